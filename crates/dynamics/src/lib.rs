@@ -1,0 +1,1 @@
+//! surfgrav-dynamics: see the crate description.

@@ -1,0 +1,1 @@
+//! surfgrav-quadrature: see the crate description.

@@ -1,0 +1,1 @@
+//! surfgrav-surfaces: see the crate description.

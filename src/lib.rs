@@ -1,0 +1,13 @@
+//! # surfgrav
+//!
+//! Exact gravitational interaction of extended rigid bodies by Conway's (2016) surface
+//! integrals. This facade re-exports the workspace crates:
+//!
+//! - [`potentials`]: closed-form fields of homogeneous bodies;
+//! - [`surfaces`]: body surfaces and their area vectors;
+//! - [`quadrature`]: quadrature rules as data;
+//! - [`dynamics`]: two-body motion.
+pub use surfgrav_dynamics as dynamics;
+pub use surfgrav_potentials as potentials;
+pub use surfgrav_quadrature as quadrature;
+pub use surfgrav_surfaces as surfaces;
