@@ -1,0 +1,151 @@
+//! Closed surfaces parametrised over a rectangle, and their outward area vectors.
+//!
+//! A [`Surface`] maps a parameter rectangle $[u_0, u_1] \times [v_0, v_1]$ onto a closed surface in
+//! the body frame, $\mathbf r(u, v)$, and gives the **area vector per unit parameter area**
+//!
+//! $$ \mathbf S(u, v) = \frac{\partial \mathbf r}{\partial u} \times \frac{\partial \mathbf r}{\partial v}, $$
+//!
+//! with the order of $u$ and $v$ chosen by each parametrisation so that $\mathbf S$ points
+//! **out of** the enclosed volume. Hence, for any integrand $f$,
+//!
+//! $$ \oint f\, \mathrm d\mathbf S = \int_{v_0}^{v_1}\!\int_{u_0}^{u_1} f(\mathbf r(u, v))\,
+//!    \mathbf S(u, v)\, \mathrm du\, \mathrm dv , $$
+//!
+//! and a tensor quadrature rule turns it into the weighted sum that a
+//! [`SurfaceNodes`](crate::SurfaceNodes) table precomputes.
+//!
+//! Units: $\mathbf r$ has the unit of length of the shape's sizes; $\mathbf S$ has length² per
+//! unit of $u$ and $v$ (for example length per radian for the azimuth–height form, whose $v$ is
+//! itself a length).
+//!
+//! Where a parametrisation degenerates (a pole, where a whole row of parameters maps to one point)
+//! $\mathbf S$ stays finite; it may vanish there (polar-angle form) or not (azimuth–height form).
+
+use crate::{NodeTableError, Real, Vec3};
+use std::f64::consts::TAU;
+
+/// A closed interval $[\text{start}, \text{end}]$ with finite ends, start < end.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Interval {
+    start: Real,
+    end: Real,
+}
+
+impl Interval {
+    /// $[-1, 1]$, where Gauss–Legendre rules are usually tabulated.
+    pub const SYMMETRIC_UNIT: Interval = Interval {
+        start: -1.0,
+        end: 1.0,
+    };
+
+    /// $[0, 1]$.
+    pub const UNIT: Interval = Interval {
+        start: 0.0,
+        end: 1.0,
+    };
+
+    /// $[0, 2\pi]$, one turn of an azimuth.
+    pub const FULL_TURN: Interval = Interval {
+        start: 0.0,
+        end: TAU,
+    };
+
+    /// An interval; fails unless both ends are finite and `start < end`.
+    pub fn new(start: Real, end: Real) -> Result<Self, NodeTableError> {
+        if start.is_finite() && end.is_finite() && start < end {
+            Ok(Self { start, end })
+        } else {
+            Err(NodeTableError::InvalidInterval { start, end })
+        }
+    }
+
+    /// Lower end.
+    pub fn start(&self) -> Real {
+        self.start
+    }
+
+    /// Upper end.
+    pub fn end(&self) -> Real {
+        self.end
+    }
+
+    /// `end − start` (may overflow to +∞ for ends near ±`f64::MAX`).
+    pub fn length(&self) -> Real {
+        self.end - self.start
+    }
+
+    /// Whether `x` lies in the closed interval.
+    pub fn contains(&self, x: Real) -> bool {
+        self.start <= x && x <= self.end
+    }
+}
+
+/// In which parameter directions the surface closes on itself, so that
+/// $\mathbf r(u_0, v) = \mathbf r(u_1, v)$ with all derivatives (for `U`). A periodic direction is
+/// best integrated with the trapezoid rule, which converges geometrically for smooth periodic
+/// integrands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Periodicity {
+    /// Periodic in $u$ only.
+    U,
+    /// Periodic in $v$ only.
+    V,
+    /// Periodic in both (a torus).
+    Both,
+    /// Periodic in neither.
+    Neither,
+}
+
+/// The parameter rectangle of a surface and its periodicity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ParameterDomain {
+    /// The range of $u$.
+    pub u: Interval,
+    /// The range of $v$.
+    pub v: Interval,
+    /// Which directions are periodic.
+    pub periodicity: Periodicity,
+}
+
+/// A closed surface in its body frame, parametrised over a rectangle (see the module docs).
+///
+/// Object safe, so a scene can hold `Box<dyn Surface>`; node tables are built generically
+/// (`S: Surface + ?Sized`), once, so dynamic dispatch never reaches an evaluation loop.
+///
+/// Contract (the crate's tests check it for both ellipsoid forms and a user-defined torus):
+/// - [`Surface::area_vector`] equals $\partial_u \mathbf r \times \partial_v \mathbf r$ and points
+///   outward;
+/// - $\oint \mathrm d\mathbf S = 0$ and $\tfrac13 \oint \mathbf r \cdot \mathrm d\mathbf S$ equals
+///   [`Surface::enclosed_volume`] when that is known.
+///
+/// Parameters outside the rectangle are clamped into it in a non-periodic direction and taken
+/// modulo the period in a periodic one, so every finite parameter pair gives finite values.
+pub trait Surface: std::fmt::Debug + Send + Sync {
+    /// The parameter rectangle and which of its directions is periodic.
+    fn parameter_domain(&self) -> ParameterDomain;
+
+    /// The surface point $\mathbf r(u, v)$ in the body frame.
+    fn point(&self, u: Real, v: Real) -> Vec3;
+
+    /// The outward area vector per unit parameter area,
+    /// $\partial_u \mathbf r \times \partial_v \mathbf r$.
+    fn area_vector(&self, u: Real, v: Real) -> Vec3;
+
+    /// Point and area vector together; implementations override it to share trigonometry.
+    fn point_and_area_vector(&self, u: Real, v: Real) -> (Vec3, Vec3) {
+        (self.point(u, v), self.area_vector(u, v))
+    }
+
+    /// The enclosed volume in closed form, if known.
+    fn enclosed_volume(&self) -> Option<Real> {
+        None
+    }
+
+    /// The surface area in closed form, if known.
+    fn surface_area(&self) -> Option<Real> {
+        None
+    }
+
+    /// Radius of the smallest origin-centred sphere that contains the surface.
+    fn bounding_radius(&self) -> Real;
+}
