@@ -1,1 +1,471 @@
+//! The uniform disk: a lamina of radius $R$ in the body's x–y plane, centred on the origin, with
+//! constant surface density $\sigma = M / (\pi R^2)$.
+//!
+//! # Potential
+//!
+//! $\Phi(\mathbf r) = -G\sigma \int_{\rho' \le R} \mathrm dA' / |\mathbf r - \mathbf r'|$, defined and
+//! continuous everywhere, through the lamina and across the rim. In cylindrical coordinates
+//! $(\rho, z)$ scaled by $R$ (so the rim is $\rho = 1$), with
+//!
+//! $$S_\pm = \sqrt{(1 \pm \rho)^2 + z^2},\quad k_c = S_-/S_+ = \sqrt{1 - m},\quad
+//! m = \frac{4\rho}{S_+^2},\quad \sqrt{1 - n} = \frac{|1 - \rho|}{1 + \rho},\quad
+//! n = \frac{4\rho}{(1+\rho)^2},$$
+//!
+//! summing rings of radius $s$ (each $\Phi = -G\,\mathrm dm\,(2/\pi) K(m_s) / S_+(s)$) gives the
+//! classical closed form
+//!
+//! $$\Phi = -2G\sigma R\Big[S_+ E(m) + \frac{1-\rho^2}{S_+}K(m) +
+//!   \frac{z^2 (1-\rho)}{(1+\rho) S_+}\Pi(n, m)\Big] + 2\pi G\sigma R\,|z|\,H(1-\rho),$$
+//!
+//! with $H$ the step function ($H(0) = 1/2$). The step and the jump of the $\Pi$ term at
+//! $\rho = 1$ cancel, so $\Phi$ is continuous at the rim. We evaluate it as
+//!
+//! $$\Phi = -2G\sigma R\,\frac{B\,(2 + 2\rho + z^2) + D\,(2 - 2\rho + z^2) +
+//!   z^2\,\mathrm{sgn}(1-\rho)\,P}{S_+} + 2\pi G\sigma R\,|z|\,H(1-\rho),
+//!   \qquad P = \sqrt{1-n}\;\Pi(n, m),$$
+//!
+//! with $B$, $D$ and $P$ from [`crate::elliptic`] (all subtraction-free, $P$ finite as
+//! $\rho \to 1$). On the axis the bracket reduces to $\pi(S_+ - |z|)$, giving
+//! $\Phi = -2\pi G\sigma(\sqrt{R^2 + z^2} - |z|)$.
+//!
+//! # Acceleration
+//!
+//! $\mathbf a = -\nabla\Phi$. The in-plane part comes from the rim (Gauss's theorem in the plane
+//! turns $\nabla_\parallel$ of the area integral into a line integral over the rim), and is a
+//! positive integral with no cancellation:
+//!
+//! $$a_\rho = -16\,G\sigma\,\frac{\rho\,C(m)}{S_+^3},\qquad C = \frac{D - B}{m}.$$
+//!
+//! The normal part is $G\sigma$ times the solid angle $\Omega$ the disk subtends:
+//!
+//! $$a_z = -\operatorname{sgn}(z)\,G\sigma\,\Omega,\qquad
+//! \Omega = 2\pi H(1-\rho) - \frac{2|z|}{S_+}\big[K(m) + \mathrm{sgn}(1-\rho)\,P\big].$$
+//!
+//! # Conventions on the lamina and at the rim
+//!
+//! - **On the lamina** ($z = 0$, $\rho < R$) $a_z$ jumps by $4\pi G\sigma$ (from $+2\pi G\sigma$
+//!   below to $-2\pi G\sigma$ above). We return the **average of the two sides**, $a_z = 0$, with
+//!   the in-plane components and $\Phi$, which are continuous there. The same rule gives
+//!   $a_z = 0$ in the plane outside the disk, where there is no jump.
+//! - **At the rim** ($\rho = R$, $z = 0$) $a_\rho$ diverges like $-2G\sigma\ln(8R/d)$ at a distance
+//!   $d$ from it. Exactly on the rim we return the field at $d = \varepsilon R$ (machine
+//!   epsilon): finite, $a_\rho \approx -2\,G\sigma\,(\ln(8/\varepsilon) - 2) \approx -72\,G\sigma$,
+//!   and $a_z = 0$ by the average rule. $\Phi$ is finite and continuous there.
+//! - Near the rim the field is ill-conditioned in the position itself (a change of one ULP in
+//!   $\rho$ at $\rho = R(1 \pm 10^{-9})$ changes $\mathbf a$ by ~$10^{-8}$). The signed distance
+//!   $\rho - R$ is therefore formed from $x^2 + y^2 - R^2$ in double-double arithmetic, so the
+//!   field is the one at the exact input point.
+//!
+//! # Far field
+//!
+//! The closed form's terms are $O(r)$ while $\Phi = O(R^2/r)$: it loses about $(r/R)^2$ in
+//! relative precision. From $r \ge 2R$ we use the exterior expansion instead, exact for $r > R$:
+//!
+//! $$\Phi = -\frac{GM}{r}\sum_{l \ge 0} c_l \Big(\frac{R}{r}\Big)^{2l} P_{2l}(\cos\theta),\qquad
+//! c_l = 2\binom{1/2}{l+1} = 1, -\tfrac14, \tfrac18, -\tfrac5{64}, \dots$$
+//!
+//! whose coefficients come from the on-axis potential
+//! $-2\pi G\sigma(\sqrt{R^2+z^2} - |z|) = -\frac{GM}{z}\sum_l c_l (R/z)^{2l}$. The quadrupole
+//! term is $+\frac{GMR^2}{4r^3}P_2(\cos\theta)$ (MacCullagh with $I_{zz} = MR^2/2$,
+//! $I_{xx} = I_{yy} = MR^2/4$). Its gradient uses
+//! $\partial_z (r^{-n-1}P_n) = -(n+1) r^{-n-2} P_{n+1}$ and
+//! $\partial_\rho (r^{-n-1}P_n) = -r^{-n-2}\sin\theta\,P'_{n+1}$. At $r = 2R$ the series needs 29
+//! terms; at $r = 10R$, 10; at $r = 10^8 R$, 3.
+//!
+//! # Accuracy
+//!
+//! Against 50-digit evaluations (mpmath) of the formulas above, themselves checked against the
+//! ring integral, at 5,400 points: $\le 4.1\times10^{-15}$ relative in $\Phi$ and
+//! $\le 3.5\times10^{-15}$ in $\mathbf a$ (vector norm), the worst just inside $r = 2R$ where
+//! the closed form's cancellation peaks; $\le 1.4\times10^{-15}$ near the rim
+//! ($\rho = R(1 \pm 10^{-12} \dots 10^{-3})$, $0 \le |z| \le R/2$), on and near the lamina
+//! and the axis, and $\le 6\times10^{-16}$ for $r \ge 2R$ out to $10^8 R$; at SI magnitudes
+//! alike. Cost: about 100 ns per [`Potential::field`] near the disk, 40–110 ns far away.
 
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::sync::OnceLock;
+
+use crate::elliptic::gauss;
+use crate::error::{positive, representable};
+use crate::{BodyError, Field, Potential, Real, Region, Vec3};
+
+/// From this distance (in disk radii) on, the exterior Legendre series replaces the closed form
+/// (measured: the closed form's error grows as ~(r/R)² ε and reaches 4e-15 at r = 2R; the
+/// series needs 29 terms there).
+const FAR_FIELD_RADII: Real = 2.0;
+
+/// Number of terms of the exterior series kept (29 are needed at r = 2R).
+const SERIES_TERMS: usize = 32;
+
+/// A homogeneous disk of zero thickness (a lamina) in the body's x–y plane, centred on the
+/// origin. Units: any consistent system; `radius` in length, `mass` in mass, G in
+/// length³/(mass·time²).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UniformDisk {
+    radius: Real,
+    mass: Real,
+    gravitational_constant: Real,
+    surface_density: Real,
+    /// Gσ: the scale of the acceleration in the closed form.
+    g_sigma: Real,
+    /// GσR: the scale of the potential in the closed form.
+    g_sigma_radius: Real,
+    /// GM, for the far field.
+    gm: Real,
+}
+
+impl UniformDisk {
+    /// A disk of the given radius and total mass, with G = 1. Both must be positive and finite,
+    /// and the surface density M/(πR²) representable.
+    pub fn new(radius: Real, mass: Real) -> Result<Self, BodyError> {
+        let radius = positive("radius", radius)?;
+        let mass = positive("mass", mass)?;
+        Self::build(radius, mass, 1.0)
+    }
+
+    /// The same disk with gravitational constant `g` (positive, finite).
+    pub fn with_gravitational_constant(self, g: Real) -> Result<Self, BodyError> {
+        let g = positive("gravitational_constant", g)?;
+        Self::build(self.radius, self.mass, g)
+    }
+
+    fn build(radius: Real, mass: Real, g: Real) -> Result<Self, BodyError> {
+        let surface_density = representable("surface_density", mass / (PI * radius) / radius)?;
+        let g_sigma = representable(
+            "gravitational_constant * surface_density",
+            g * surface_density,
+        )?;
+        let g_sigma_radius = representable(
+            "gravitational_constant * surface_density * radius",
+            g_sigma * radius,
+        )?;
+        let gm = representable("gravitational_constant * mass", g * mass)?;
+        Ok(Self {
+            radius,
+            mass,
+            gravitational_constant: g,
+            surface_density,
+            g_sigma,
+            g_sigma_radius,
+            gm,
+        })
+    }
+
+    /// Radius R.
+    pub fn radius(&self) -> Real {
+        self.radius
+    }
+
+    /// Surface density σ = M / (πR²) (mass per area).
+    pub fn surface_density(&self) -> Real {
+        self.surface_density
+    }
+
+    /// $(\rho - R)/R$ for a point at `rho` $= \sqrt{x^2+y^2}$, exact to a few ULP of itself even
+    /// within $10^{-16}R$ of the rim.
+    fn relative_rim_offset(&self, x: Real, y: Real, rho: Real) -> Real {
+        let r = self.radius;
+        let rho_n = rho / r;
+        if (rho_n - 1.0).abs() >= 0.5 {
+            return rho_n - 1.0;
+        }
+        // x² + y² − R² in double-double, then ρ − R = (x² + y² − R²)/(ρ + R).
+        let (px, ex) = two_product(x, x);
+        let (py, ey) = two_product(y, y);
+        let (pr, er) = two_product(r, r);
+        let (s1, f1) = two_sum(px, py);
+        let (s2, f2) = two_sum(s1, -pr);
+        let excess = s2 + (f1 + f2 + ex + ey - er);
+        excess / (rho + r) / r
+    }
+
+    /// The closed form, for points within `FAR_FIELD_RADII` radii.
+    fn near_field(&self, p: &Vec3, rho: Real) -> Field {
+        let r = self.radius;
+        let (xn, yn, zn) = (p.x / r, p.y / r, p.z / r);
+        let rho_n = rho / r;
+        let delta = self.relative_rim_offset(p.x, p.y, rho);
+        let az = zn.abs();
+        let z2 = az * az;
+        let s_plus = (2.0 + delta).hypot(az);
+        let mut s_minus = delta.hypot(az);
+        if s_minus == 0.0 {
+            // Exactly on the rim: the field at ε·R from it (see the module docs).
+            s_minus = Real::EPSILON;
+        }
+        let kc = s_minus / s_plus;
+        // (1 − ρ)/(1 + ρ) = sgn(1 − ρ) √(1 − n).
+        let signed_snc = -delta / (2.0 + delta);
+        let snc = signed_snc.abs();
+        // P = √(1−n) Π(n, m) enters multiplied by z² and |z| and not at all on the rim circle.
+        let needs_pi = az > 0.0 && delta != 0.0;
+        // Below 1e-20 k_c, P equals its limit π/(2 k_c) to double precision.
+        let use_pi_track = needs_pi && snc > 1e-20 * kc;
+        let g = gauss(kc, use_pi_track.then_some(snc));
+        let p_scaled = if !needs_pi {
+            0.0
+        } else if use_pi_track {
+            g.pi_scaled
+        } else {
+            FRAC_PI_2 / kc
+        };
+        let signed_p = if needs_pi {
+            p_scaled.copysign(signed_snc)
+        } else {
+            0.0
+        };
+        let step = if delta < 0.0 {
+            1.0
+        } else if delta == 0.0 {
+            0.5
+        } else {
+            0.0
+        };
+
+        let bracket =
+            (g.b * (2.0 + 2.0 * rho_n + z2) + g.d * (z2 - 2.0 * delta) + z2 * signed_p) / s_plus;
+        let v = 2.0 * bracket - 2.0 * PI * az * step;
+        let omega = 2.0 * PI * step - 2.0 * az / s_plus * (g.k + signed_p);
+        let radial_over_rho = -16.0 * g.c / (s_plus * s_plus * s_plus);
+        let side = if p.z > 0.0 {
+            1.0
+        } else if p.z < 0.0 {
+            -1.0
+        } else {
+            0.0
+        };
+        Field {
+            potential: -self.g_sigma_radius * v,
+            acceleration: Vec3::new(
+                self.g_sigma * radial_over_rho * xn,
+                self.g_sigma * radial_over_rho * yn,
+                -self.g_sigma * side * omega,
+            ),
+        }
+    }
+
+    /// The exterior Legendre series, for points at `dist` ≥ `FAR_FIELD_RADII` radii.
+    fn far_field(&self, p: &Vec3, dist: Real) -> Field {
+        let tables = series_tables();
+        let u = p.z / dist;
+        let ratio = self.radius / dist;
+        let t = ratio * ratio;
+        // P_{2l}, P_{2l+1} and their derivatives P'_{2l}, P'_{2l+1} at u.
+        let (mut p_even, mut p_odd) = (1.0, u);
+        let (mut d_even, mut d_odd) = (0.0, 1.0);
+        let (mut sum_potential, mut sum_axial, mut sum_radial) = (0.0, 0.0, 0.0);
+        let mut t_power = 1.0;
+        for l in 0..SERIES_TERMS {
+            let c = tables.coefficient[l] * t_power;
+            let k = 2 * l + 1; // degree of p_odd
+            sum_potential += c * p_even;
+            sum_axial += c * tables.odd_degree[l] * p_odd;
+            sum_radial += c * d_odd;
+            // |P_n| ≤ 1 and |sinθ P'_n| ≤ n: the remaining terms are below 1e-17 of the sums.
+            if c.abs() * (tables.odd_degree[l] + 1.0) < 1e-17 {
+                break;
+            }
+            // P_{k+1} = a_k u P_k − b_k P_{k−1} and P'_{k+1} = P'_{k−1} + (2k+1) P_k, twice.
+            let p_next_even = tables.rec_a[k] * u * p_odd - tables.rec_b[k] * p_even;
+            let d_next_even = d_even + tables.rec_c[k] * p_odd;
+            let p_next_odd = tables.rec_a[k + 1] * u * p_next_even - tables.rec_b[k + 1] * p_odd;
+            let d_next_odd = d_odd + tables.rec_c[k + 1] * p_next_even;
+            p_even = p_next_even;
+            p_odd = p_next_odd;
+            d_even = d_next_even;
+            d_odd = d_next_odd;
+            t_power *= t;
+        }
+        let gm_over_r = self.gm / dist;
+        let gm_over_r2 = gm_over_r / dist;
+        Field {
+            potential: -gm_over_r * sum_potential,
+            acceleration: Vec3::new(
+                -gm_over_r2 * (p.x / dist) * sum_radial,
+                -gm_over_r2 * (p.y / dist) * sum_radial,
+                -gm_over_r2 * sum_axial,
+            ),
+        }
+    }
+}
+
+impl Potential for UniformDisk {
+    fn mass(&self) -> Real {
+        self.mass
+    }
+
+    fn gravitational_constant(&self) -> Real {
+        self.gravitational_constant
+    }
+
+    /// A lamina has no volume.
+    fn volume(&self) -> Real {
+        0.0
+    }
+
+    fn bounding_radius(&self) -> Real {
+        self.radius
+    }
+
+    /// `OnSurface` on the closed lamina ($z = 0$, $\rho \le R$), `Outside` elsewhere.
+    fn region(&self, r: &Vec3) -> Region {
+        if r.z == 0.0 && self.relative_rim_offset(r.x, r.y, r.x.hypot(r.y)) <= 0.0 {
+            Region::OnSurface
+        } else {
+            Region::Outside
+        }
+    }
+
+    fn field(&self, r: &Vec3) -> Field {
+        let rho = r.x.hypot(r.y);
+        let dist = rho.hypot(r.z);
+        if dist >= FAR_FIELD_RADII * self.radius {
+            self.far_field(r, dist)
+        } else {
+            self.near_field(r, rho)
+        }
+    }
+}
+
+/// Coefficients of the exterior series and of the Legendre recurrence, built once.
+struct SeriesTables {
+    /// $c_l = 2\binom{1/2}{l+1}$.
+    coefficient: [Real; SERIES_TERMS],
+    /// $2l + 1$ as a float.
+    odd_degree: [Real; SERIES_TERMS],
+    /// $(2k+1)/(k+1)$: $P_{k+1} = a_k u P_k - b_k P_{k-1}$.
+    rec_a: [Real; 2 * SERIES_TERMS + 2],
+    /// $k/(k+1)$.
+    rec_b: [Real; 2 * SERIES_TERMS + 2],
+    /// $2k + 1$: $P'_{k+1} = P'_{k-1} + (2k+1) P_k$.
+    rec_c: [Real; 2 * SERIES_TERMS + 2],
+}
+
+fn series_tables() -> &'static SeriesTables {
+    static TABLES: OnceLock<SeriesTables> = OnceLock::new();
+    TABLES.get_or_init(|| {
+        let mut coefficient = [0.0; SERIES_TERMS];
+        let mut odd_degree = [0.0; SERIES_TERMS];
+        // c_0 = 1, c_l / c_{l−1} = −(2l − 1)/(2l + 2): exact dyadic rationals, rounded once
+        // each when they no longer fit (l ≥ 22).
+        let (mut numerator, mut denominator) = (1u128, 1u128);
+        for l in 0..SERIES_TERMS {
+            if l > 0 {
+                numerator *= 2 * l as u128 - 1;
+                denominator *= 2 * l as u128 + 2;
+                let common = gcd(numerator, denominator);
+                numerator /= common;
+                denominator /= common;
+            }
+            let sign = if l % 2 == 0 { 1.0 } else { -1.0 };
+            coefficient[l] = sign * ratio_to_f64(numerator, denominator);
+            odd_degree[l] = (2 * l + 1) as Real;
+        }
+        let mut rec_a = [0.0; 2 * SERIES_TERMS + 2];
+        let mut rec_b = [0.0; 2 * SERIES_TERMS + 2];
+        let mut rec_c = [0.0; 2 * SERIES_TERMS + 2];
+        for k in 0..rec_a.len() {
+            rec_a[k] = (2 * k + 1) as Real / (k + 1) as Real;
+            rec_b[k] = k as Real / (k + 1) as Real;
+            rec_c[k] = (2 * k + 1) as Real;
+        }
+        SeriesTables {
+            coefficient,
+            odd_degree,
+            rec_a,
+            rec_b,
+            rec_c,
+        }
+    })
+}
+
+fn gcd(mut a: u128, mut b: u128) -> u128 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
+}
+
+/// `numerator / denominator` correctly rounded when the denominator is a power of two (it is
+/// for the series coefficients) and the numerator fits in 2^113.
+fn ratio_to_f64(numerator: u128, denominator: u128) -> Real {
+    debug_assert!(denominator.is_power_of_two());
+    let shift = denominator.trailing_zeros() as i32;
+    // u128 → f64 rounds to nearest; the power-of-two scaling is exact.
+    numerator as Real * (2.0 as Real).powi(-shift)
+}
+
+/// `a·b = p + e` exactly.
+#[inline]
+fn two_product(a: Real, b: Real) -> (Real, Real) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+/// `a + b = s + e` exactly (Knuth).
+#[inline]
+fn two_sum(a: Real, b: Real) -> (Real, Real) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn series_coefficients_are_the_binomial_ones() {
+        let c = &series_tables().coefficient;
+        assert_eq!(&c[..5], &[1.0, -0.25, 0.125, -5.0 / 64.0, 7.0 / 128.0]);
+        // c_l = 2 binom(1/2, l+1), by the float recurrence (a few ULP).
+        let mut b = 0.5;
+        for (l, &cl) in c.iter().enumerate() {
+            b *= (0.5 - (l + 1) as f64) / (l + 2) as f64;
+            if l + 1 < c.len() {
+                let want = 2.0 * b;
+                let got = c[l + 1];
+                assert!(
+                    ((got - want) / want).abs() < 1e-14,
+                    "c_{} = {got} vs {want}",
+                    l + 1
+                );
+            }
+            assert!(cl.is_finite() && cl != 0.0);
+        }
+    }
+
+    #[test]
+    fn rim_offset_is_exact_for_offsets_far_below_one_ulp_of_rho() {
+        let disk = UniformDisk::new(3.0, 1.0).unwrap();
+        // A point whose x² + y² − R² is exactly 2⁻⁵⁰ (x = 3 − tiny is not representable, so
+        // build it from a Pythagorean triple scaled into 3).
+        let (x, y) = (1.8_f64, 2.4_f64); // 1.8² + 2.4² = 9 in reals; in doubles off by a few ULP.
+        let rho = x.hypot(y);
+        let got = disk.relative_rim_offset(x, y, rho);
+        // Reference in exact rational arithmetic on the doubles' values.
+        let exact = exact_offset(x, y, 3.0);
+        assert!(exact != 0.0, "the test point must be off the rim");
+        assert!(
+            ((got - exact) / exact).abs() < 1e-15,
+            "offset {got:e} vs exact {exact:e}"
+        );
+    }
+
+    /// (√(x²+y²) − R)/R ≈ (x² + y² − R²)/(2R²) to first order, with x², y², R² summed exactly as
+    /// i128 multiples of 2^-104 (the inputs have ≤ 52 fractional bits here).
+    fn exact_offset(x: f64, y: f64, r: f64) -> f64 {
+        let scale = 2f64.powi(52);
+        let (xi, yi, ri) = (
+            (x * scale) as i128,
+            (y * scale) as i128,
+            (r * scale) as i128,
+        );
+        assert_eq!(xi as f64 / scale, x);
+        assert_eq!(yi as f64 / scale, y);
+        let excess = xi * xi + yi * yi - ri * ri; // in units of 2^-104
+        let e = excess as f64 / (scale * scale);
+        // ρ − R = e/(ρ + R) with ρ + R = 2R to relative e/R², far below 1e-15 here.
+        e / (2.0 * r) / r
+    }
+}
