@@ -108,7 +108,8 @@ impl Pose {
 
     /// World point → body-frame point.
     pub fn to_body(&self, r_world: &Vec3) -> Vec3 {
-        self.rotation.inverse_transform_vector(&(r_world - self.position))
+        self.rotation
+            .inverse_transform_vector(&(r_world - self.position))
     }
 
     /// Body-frame point → world point.
