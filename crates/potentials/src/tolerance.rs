@@ -16,7 +16,7 @@ pub const ACCELERATION_REL: f64 = 1e-13;
 /// Relative error allowed in the coplanar disk–disk force and energy (issue 2).
 pub const DISK_PAIR_REL: f64 = 1e-14;
 
-/// Relative agreement required between an analytic gradient and a central finite difference of
-/// step h = 1e-4 · scale with Richardson extrapolation (error O(h⁴) ≈ 1e-16 of the curvature
-/// scale, plus cancellation ≈ ε·Φ/h ≈ 1e-12).
+/// Relative agreement required between an analytic gradient and a fourth-order (Richardson)
+/// central difference of step h = 1e-3 × the distance to the nearest singularity d: truncation
+/// O((h/d)⁴) ≈ 1e-12, cancellation ≈ ε·|Φ|/h ≤ 5e-11 of |∇Φ| at the closest probes (d = r/21).
 pub const FINITE_DIFFERENCE_REL: f64 = 1e-9;
