@@ -1,0 +1,387 @@
+//! A central pair whose energy $V(r)$ is replaced by a piecewise Chebyshev interpolant, built
+//! once over the separations an orbit can reach, with the force taken as the exact derivative of
+//! that interpolant.
+//!
+//! # Method
+//!
+//! $[r_{min}, r_{max}]$ is split into pieces; on a piece $[a, b]$ with $x = (2r - a - b)/(b - a)$,
+//! $$V(r) \approx \sum_{j=0}^{n} c_j T_j(x), \qquad
+//!   c_j = \frac{2 - \delta_{j0}}{n+1} \sum_{k=0}^{n} V(r_k) \cos\frac{\pi j (k + 1/2)}{n + 1},$$
+//! interpolating at the Chebyshev points of the first kind $x_k = \cos(\pi(k + 1/2)/(n+1))$.
+//! The derivative series $V'(r) = \frac{2}{b-a}\sum_j d_j T_j(x)$ follows from
+//! $d_{j-1} = d_{j+1} + 2 j c_j$ ($d_n = d_{n+1} = 0$, then $d_0 \leftarrow d_0/2$); both are
+//! evaluated by Clenshaw's recurrence. A piece is accepted when at the $n$ midpoints between its
+//! nodes (where the interpolation error is largest) $|V_{interp} - V| \le \tau |V|$, and halved
+//! otherwise (depth ≤ 40).
+//!
+//! Because the force is the exact gradient of the interpolated energy, the integrated system is
+//! Hamiltonian with energy $T + V_{interp}$: an integrator conserves it as well as it would the
+//! exact one, and the energy it reports agrees with the direct $V$ to within $\tau$.
+//!
+//! Domain: separations in $[r_{min}, r_{max}]$; outside, the model returns
+//! [`InteractionError::OutsideRange`] (never extrapolates).
+
+use crate::model::{InteractionError, InteractionModel};
+use surfgrav_potentials::{Pose, Real, Vec3};
+
+/// Degree of the polynomial on each piece.
+const DEGREE: usize = 20;
+/// Halvings allowed below the initial interval.
+const MAX_DEPTH: u32 = 40;
+
+/// Why an interpolant could not be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum InterpolantError {
+    /// The range or tolerance is invalid.
+    #[error("invalid interpolation setup: {0}")]
+    InvalidSetup(&'static str),
+    /// The direct energy failed at a separation.
+    #[error("the direct energy failed at separation {separation}: {source}")]
+    Energy {
+        /// Where.
+        separation: Real,
+        /// The model's error.
+        source: InteractionError,
+    },
+    /// The tolerance could not be met even after halving a piece 40 times.
+    #[error("tolerance {tolerance:e} not reached near separation {separation}")]
+    NotConverged {
+        /// Where.
+        separation: Real,
+        /// The requested relative tolerance.
+        tolerance: Real,
+    },
+}
+
+#[derive(Debug, Clone, PartialEq)]
+struct Piece {
+    start: Real,
+    end: Real,
+    value: [Real; DEGREE + 1],
+    derivative: [Real; DEGREE + 1],
+}
+
+fn clenshaw(c: &[Real], x: Real) -> Real {
+    let (mut b1, mut b2) = (0.0, 0.0);
+    for &cj in c.iter().skip(1).rev() {
+        let b0 = 2.0 * x * b1 - b2 + cj;
+        b2 = b1;
+        b1 = b0;
+    }
+    x * b1 - b2 + c[0]
+}
+
+impl Piece {
+    fn build(
+        start: Real,
+        end: Real,
+        energy: &mut dyn FnMut(Real) -> Result<Real, InterpolantError>,
+    ) -> Result<Self, InterpolantError> {
+        let m = (DEGREE + 1) as Real;
+        let half = 0.5 * (end - start);
+        let mid = 0.5 * (end + start);
+        let mut samples = [0.0; DEGREE + 1];
+        for (k, sample) in samples.iter_mut().enumerate() {
+            let x = (std::f64::consts::PI * (k as Real + 0.5) / m).cos();
+            *sample = energy(mid + half * x)?;
+        }
+        let mut value = [0.0; DEGREE + 1];
+        for (j, c) in value.iter_mut().enumerate() {
+            let sum: Real = samples
+                .iter()
+                .enumerate()
+                .map(|(k, f)| f * (std::f64::consts::PI * j as Real * (k as Real + 0.5) / m).cos())
+                .sum();
+            *c = if j == 0 { sum / m } else { 2.0 * sum / m };
+        }
+        let mut derivative = [0.0; DEGREE + 1];
+        // d_{j-1} = d_{j+1} + 2 j c_j, with value[0] already holding c_0 (not 2 c_0).
+        for j in (1..=DEGREE).rev() {
+            let next = if j < DEGREE { derivative[j + 1] } else { 0.0 };
+            derivative[j - 1] = next + 2.0 * j as Real * value[j];
+        }
+        derivative[0] *= 0.5;
+        let scale = 1.0 / half;
+        for d in derivative.iter_mut() {
+            *d *= scale;
+        }
+        Ok(Self {
+            start,
+            end,
+            value,
+            derivative,
+        })
+    }
+
+    fn local(&self, r: Real) -> Real {
+        ((2.0 * r - self.start - self.end) / (self.end - self.start)).clamp(-1.0, 1.0)
+    }
+
+    fn energy(&self, r: Real) -> Real {
+        clenshaw(&self.value, self.local(r))
+    }
+
+    fn energy_derivative(&self, r: Real) -> Real {
+        clenshaw(&self.derivative, self.local(r))
+    }
+}
+
+/// A central pair with a piecewise Chebyshev interpolant of $V(r)$ and the force from its exact
+/// derivative.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InterpolatedCentralPair {
+    mass_a: Real,
+    mass_b: Real,
+    pieces: Vec<Piece>,
+    contact_distance: Option<Real>,
+    tolerance: Real,
+    energy_evaluations: usize,
+}
+
+impl InterpolatedCentralPair {
+    /// Builds the interpolant of `energy` (the direct $V(r)$) over
+    /// [`min_separation`, `max_separation`] to relative tolerance `tolerance`, checked at the
+    /// midpoints between the nodes of every piece.
+    pub fn build(
+        mass_a: Real,
+        mass_b: Real,
+        min_separation: Real,
+        max_separation: Real,
+        tolerance: Real,
+        energy: &mut dyn FnMut(Real) -> Result<Real, InteractionError>,
+    ) -> Result<Self, InterpolantError> {
+        let ok = |x: Real| x.is_finite() && x > 0.0;
+        if !(ok(mass_a) && ok(mass_b)) {
+            return Err(InterpolantError::InvalidSetup(
+                "masses must be positive and finite",
+            ));
+        }
+        if !(ok(min_separation) && ok(max_separation) && min_separation < max_separation) {
+            return Err(InterpolantError::InvalidSetup(
+                "need 0 < min_separation < max_separation, both finite",
+            ));
+        }
+        if !(ok(tolerance) && tolerance >= 1e-15) {
+            return Err(InterpolantError::InvalidSetup(
+                "tolerance must be finite and at least 1e-15",
+            ));
+        }
+        let mut evaluations = 0usize;
+        let mut direct = |r: Real| {
+            evaluations += 1;
+            match energy(r) {
+                Ok(v) if v.is_finite() => Ok(v),
+                Ok(v) => Err(InterpolantError::Energy {
+                    separation: r,
+                    source: InteractionError::NotFinite {
+                        quantity: "energy",
+                        value: v,
+                        separation: r,
+                    },
+                }),
+                Err(source) => Err(InterpolantError::Energy {
+                    separation: r,
+                    source,
+                }),
+            }
+        };
+        let mut pieces = Vec::new();
+        let mut stack = vec![(min_separation, max_separation, 0u32)];
+        while let Some((start, end, depth)) = stack.pop() {
+            let piece = Piece::build(start, end, &mut direct)?;
+            let m = DEGREE as Real;
+            let mut worst: Real = 0.0;
+            for k in 0..DEGREE {
+                // Midpoint (in angle) between consecutive nodes.
+                let x = (std::f64::consts::PI * (k as Real + 1.0) / (m + 1.0)).cos();
+                let r = 0.5 * (end + start) + 0.5 * (end - start) * x;
+                let exact = direct(r)?;
+                let error = (piece.energy(r) - exact).abs() / exact.abs().max(Real::MIN_POSITIVE);
+                worst = worst.max(error);
+            }
+            if worst <= tolerance {
+                pieces.push(piece);
+            } else if depth >= MAX_DEPTH {
+                return Err(InterpolantError::NotConverged {
+                    separation: 0.5 * (start + end),
+                    tolerance,
+                });
+            } else {
+                let mid = 0.5 * (start + end);
+                // Pushed so that the lower half is popped (and stored) first.
+                stack.push((mid, end, depth + 1));
+                stack.push((start, mid, depth + 1));
+            }
+        }
+        Ok(Self {
+            mass_a,
+            mass_b,
+            pieces,
+            contact_distance: None,
+            tolerance,
+            energy_evaluations: evaluations,
+        })
+    }
+
+    /// The same pair, touching at centroid separation `distance` (positive, finite).
+    pub fn with_contact_distance(mut self, distance: Real) -> Option<Self> {
+        (distance.is_finite() && distance > 0.0).then(|| {
+            self.contact_distance = Some(distance);
+            self
+        })
+    }
+
+    /// Number of polynomial pieces.
+    pub fn piece_count(&self) -> usize {
+        self.pieces.len()
+    }
+
+    /// Direct energy evaluations spent building the interpolant.
+    pub fn energy_evaluations(&self) -> usize {
+        self.energy_evaluations
+    }
+
+    /// The relative tolerance the interpolant was built to.
+    pub fn tolerance(&self) -> Real {
+        self.tolerance
+    }
+
+    /// Interpolated $V(r)$ and $V'(r)$, or an error outside the range.
+    pub fn energy_and_derivative(&self, r: Real) -> Result<(Real, Real), InteractionError> {
+        let (first, last) = (self.pieces[0].start, self.pieces[self.pieces.len() - 1].end);
+        if !(r >= first && r <= last) {
+            return Err(InteractionError::OutsideRange {
+                separation: r,
+                min_separation: first,
+                max_separation: last,
+            });
+        }
+        let index = self.pieces.partition_point(|p| p.end < r);
+        let piece = &self.pieces[index.min(self.pieces.len() - 1)];
+        Ok((piece.energy(r), piece.energy_derivative(r)))
+    }
+
+    fn separation(&self, pose_a: &Pose, pose_b: &Pose) -> Result<(Vec3, Real), InteractionError> {
+        let r = pose_b.position - pose_a.position;
+        let d = r.norm();
+        if let Some(contact_distance) = self.contact_distance {
+            if d < contact_distance {
+                return Err(InteractionError::Overlap {
+                    separation: d,
+                    contact_distance,
+                });
+            }
+        }
+        Ok((r, d))
+    }
+}
+
+impl InteractionModel for InterpolatedCentralPair {
+    fn mass_a(&self) -> Real {
+        self.mass_a
+    }
+    fn mass_b(&self) -> Real {
+        self.mass_b
+    }
+    fn force_on_a(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Vec3, InteractionError> {
+        let (r, d) = self.separation(pose_a, pose_b)?;
+        let (_, derivative) = self.energy_and_derivative(d)?;
+        Ok(r * (derivative / d))
+    }
+    fn potential_energy(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Real, InteractionError> {
+        let (_, d) = self.separation(pose_a, pose_b)?;
+        Ok(self.energy_and_derivative(d)?.0)
+    }
+    fn contact_distance(&self, _pose_a: &Pose, _pose_b: &Pose) -> Option<Real> {
+        self.contact_distance
+    }
+}
+
+/// The separations a central-pair orbit can reach: the connected interval around the current
+/// separation $r_0$ where the effective energy of the relative motion
+/// $V(r) + L^2/(2\mu r^2) \le E$, with $\mu = m_A m_B/(m_A + m_B)$,
+/// $E = \tfrac12\mu|\dot{\mathbf r}|^2 + V(r_0)$ and $L = \mu|\mathbf r\times\dot{\mathbf r}|$
+/// (energy and angular momentum conservation), clipped to [`lower_limit`, `upper_limit`]
+/// (themselves clipped to the positive finite numbers). Coincident centroids are an error.
+///
+/// The turning points are found by stepping geometrically (factor 1.01) away from $r_0$ until the
+/// effective energy exceeds $E$, then bisecting to round-off. The caller adds a safety margin
+/// before tabulating (the integrator's own energy error moves the turning points slightly).
+#[allow(clippy::too_many_arguments)]
+pub fn reachable_separations(
+    energy: &mut dyn FnMut(Real) -> Result<Real, InteractionError>,
+    mass_a: Real,
+    mass_b: Real,
+    relative_position: &Vec3,
+    relative_velocity: &Vec3,
+    lower_limit: Real,
+    upper_limit: Real,
+) -> Result<(Real, Real), InteractionError> {
+    let mu = mass_a * mass_b / (mass_a + mass_b);
+    let r0 = relative_position.norm();
+    if !(r0.is_finite() && r0 > 0.0) {
+        return Err(InteractionError::Coincident);
+    }
+    // Limits outside (0, ∞) are clipped so the geometric search always ends.
+    let lower_limit = if lower_limit.is_nan() {
+        Real::MIN_POSITIVE
+    } else {
+        lower_limit.max(Real::MIN_POSITIVE)
+    };
+    let upper_limit = if upper_limit.is_nan() {
+        Real::MAX
+    } else {
+        upper_limit.min(Real::MAX)
+    };
+    let l = mu * relative_position.cross(relative_velocity).norm();
+    let total = 0.5 * mu * relative_velocity.norm_squared() + energy(r0)?;
+    let mut excess = |r: Real| -> Result<Real, InteractionError> {
+        Ok(energy(r)? + l * l / (2.0 * mu * r * r) - total)
+    };
+    let mut turning = |factor: Real, limit: Real| -> Result<Real, InteractionError> {
+        let mut inside = r0;
+        loop {
+            let next = inside * factor;
+            let beyond = if factor > 1.0 {
+                next >= limit
+            } else {
+                next <= limit
+            };
+            if beyond {
+                return if excess(limit)? <= 0.0 {
+                    Ok(limit)
+                } else {
+                    bisect(&mut excess, inside, limit)
+                };
+            }
+            if excess(next)? > 0.0 {
+                return bisect(&mut excess, inside, next);
+            }
+            inside = next;
+        }
+    };
+    let low = turning(1.0 / 1.01, lower_limit.min(r0))?;
+    let high = turning(1.01, upper_limit.max(r0))?;
+    Ok((low, high))
+}
+
+/// Bisection between `inside` (excess ≤ 0) and `outside` (excess > 0); returns the inside end.
+fn bisect(
+    excess: &mut dyn FnMut(Real) -> Result<Real, InteractionError>,
+    mut inside: Real,
+    mut outside: Real,
+) -> Result<Real, InteractionError> {
+    for _ in 0..200 {
+        let mid = 0.5 * (inside + outside);
+        if mid == inside || mid == outside {
+            break;
+        }
+        if excess(mid)? > 0.0 {
+            outside = mid;
+        } else {
+            inside = mid;
+        }
+    }
+    Ok(inside)
+}
