@@ -62,6 +62,7 @@ mod carlson;
 mod error;
 
 pub mod ellipsoid;
+pub mod interaction;
 pub mod lamina;
 pub mod nodes;
 pub mod rule;

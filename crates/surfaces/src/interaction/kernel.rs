@@ -1,0 +1,445 @@
+//! The node loops: one pass over an integrated body's node table evaluates the source body's
+//! field once per node and accumulates every sum that the force, the torque (both forms) and
+//! the mutual potential energy need (see the [module docs](super) for the formulas).
+//!
+//! The loops are generic over the source potential (`P: Potential + ?Sized`), so the field
+//! formula of a concrete type is compiled into them; with `P = dyn Potential` they still work,
+//! at the price of one indirect call per node. Nodes are moved into the source's frame on the
+//! fly (nine fused multiply–adds), so no transformed copy of the table is stored and nothing is
+//! allocated. Summation: plain within blocks of [`BLOCK`] nodes, compensated
+//! ([`crate::CompensatedSum`]) across blocks, which keeps the rounding error at the level of
+//! one block's (measured: below $10^{-15}$ relative for every table the engine builds) for a
+//! fraction of the cost of compensating every term.
+
+use super::error::InteractionError;
+use crate::sum::{CompensatedSum, CompensatedSum3};
+use crate::{LaminaNodes, Real, SurfaceNodes, Vec3};
+use nalgebra::{Matrix3, Rotation3};
+use surfgrav_potentials::{Pose, Potential};
+
+/// Nodes summed plainly before a compensated addition.
+pub const BLOCK: usize = 16;
+
+/// The affine map $\mathbf r_B = M\,\mathbf r + \mathbf t$ from the frame of an integrated body's
+/// node table into the frame of the body whose field is evaluated ($M$ a rotation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameMap {
+    pub(crate) rotation: Matrix3<Real>,
+    pub(crate) offset: Vec3,
+}
+
+impl FrameMap {
+    /// The map with rotation `rotation` and offset `offset`; fails on a non-finite entry.
+    pub fn new(rotation: &Rotation3<Real>, offset: &Vec3) -> Result<Self, InteractionError> {
+        let m = *rotation.matrix();
+        if m.iter().chain(offset.iter()).all(|x| x.is_finite()) {
+            Ok(Self {
+                rotation: m,
+                offset: *offset,
+            })
+        } else {
+            Err(InteractionError::NonFinitePose {
+                body: super::Side::A,
+                what: "frame map (rotation or offset)",
+            })
+        }
+    }
+
+    /// The map from the body frame of a body at `integrated` to the body frame of a body at
+    /// `source`: $M = R_s^{\mathsf T} R_i$, $\mathbf t = R_s^{\mathsf T}(\mathbf p_i - \mathbf p_s)$.
+    pub fn between(integrated: &Pose, source: &Pose) -> Result<Self, InteractionError> {
+        let rotation = (source.rotation.inverse() * integrated.rotation).to_rotation_matrix();
+        let offset = source
+            .rotation
+            .inverse_transform_vector(&(integrated.position - source.position));
+        Self::new(&rotation, &offset)
+    }
+
+    /// $M\mathbf r + \mathbf t$.
+    #[inline]
+    pub fn apply(&self, r: &Vec3) -> Vec3 {
+        self.rotation * r + self.offset
+    }
+
+    /// $M^{\mathsf T}\mathbf v$: a source-frame vector in the table frame.
+    #[inline]
+    pub fn back(&self, v: &Vec3) -> Vec3 {
+        self.rotation.tr_mul(v)
+    }
+}
+
+/// The raw node sums over a closed surface (table frame; $\mathbf x = \mathbf r - \mathbf o$ from
+/// the centroid, $\mathbf a$ the source's acceleration turned into the table frame).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SolidSums {
+    /// $\sum_k (\Phi_k - \Phi_0) \mathbf W_k \approx \oint \Phi\,\mathrm d\mathbf S$, with $\Phi_0$ the
+    /// source's potential at the centroid (taken out because $\oint\mathrm d\mathbf S = 0$: the
+    /// terms, and their rounding, shrink by the ratio of the body's size to its distance).
+    pub potential_flux: Vec3,
+    /// $\sum_k (\Phi_k - \Phi_0)\, \mathbf x_k \times \mathbf W_k \approx \oint \Phi\,\mathbf x\times\mathrm d\mathbf S$
+    /// ($\oint\mathbf x\times\mathrm d\mathbf S = 0$).
+    pub potential_moment: Vec3,
+    /// $\sum_k \tfrac12|\mathbf x_k|^2\, \mathbf W_k \times \mathbf a_k \approx \tfrac12\oint |\mathbf x|^2\,\mathrm d\mathbf S\times\mathbf a$.
+    pub gradient_moment: Vec3,
+    /// $\sum_k (\Phi_k \mathbf x_k + \tfrac12|\mathbf x_k|^2 \mathbf a_k)\cdot\mathbf W_k$.
+    pub energy_flux: Real,
+    /// $\sum_k |\Phi_k - \Phi_0|\,|\mathbf W_k|$: the size of the terms of `potential_flux`,
+    /// which bounds its rounding error (the terms cancel to a small result far from the source).
+    pub potential_flux_magnitude: Real,
+    /// $\sum_k |\Phi_k - \Phi_0|\,|\mathbf x_k\times\mathbf W_k|$.
+    pub potential_moment_magnitude: Real,
+    /// $\sum_k |\Phi_k\,\mathbf x_k\cdot\mathbf W_k| + |\tfrac12|\mathbf x_k|^2\,\mathbf a_k\cdot\mathbf W_k|$.
+    pub energy_flux_magnitude: Real,
+}
+
+impl SolidSums {
+    /// The same sums over the mirror image of the nodes in the plane $x_{axis} = 0$, for a
+    /// field with that mirror symmetry: polar vectors change the sign of component `axis`,
+    /// axial vectors (moments) the signs of the other two, scalars stay.
+    pub(crate) fn mirrored(&self, axis: usize) -> Self {
+        Self {
+            potential_flux: reflect_polar(&self.potential_flux, axis),
+            potential_moment: reflect_axial(&self.potential_moment, axis),
+            gradient_moment: reflect_axial(&self.gradient_moment, axis),
+            energy_flux: self.energy_flux,
+            ..*self
+        }
+    }
+
+    pub(crate) fn plus(&self, other: &Self) -> Self {
+        Self {
+            potential_flux: self.potential_flux + other.potential_flux,
+            potential_moment: self.potential_moment + other.potential_moment,
+            gradient_moment: self.gradient_moment + other.gradient_moment,
+            energy_flux: self.energy_flux + other.energy_flux,
+            potential_flux_magnitude: self.potential_flux_magnitude
+                + other.potential_flux_magnitude,
+            potential_moment_magnitude: self.potential_moment_magnitude
+                + other.potential_moment_magnitude,
+            energy_flux_magnitude: self.energy_flux_magnitude + other.energy_flux_magnitude,
+        }
+    }
+
+    /// The physical integrals for a solid of density `density` (table frame):
+    /// $\mathbf F = -\rho\oint\Phi\,\mathrm d\mathbf S$, $\mathbf M = -\rho\oint\Phi\,\mathbf x\times\mathrm d\mathbf S$,
+    /// $\mathbf M' = \tfrac\rho2\oint|\mathbf x|^2\,\mathrm d\mathbf S\times\mathbf a$,
+    /// $V = \tfrac\rho3\oint(\Phi\mathbf x + \tfrac12|\mathbf x|^2\mathbf a)\cdot\mathrm d\mathbf S$.
+    pub fn integrals(&self, density: Real, evaluations: usize) -> SolidIntegrals {
+        SolidIntegrals {
+            force: -density * self.potential_flux,
+            torque: -density * self.potential_moment,
+            torque_gradient_form: density * self.gradient_moment,
+            potential_energy: density * self.energy_flux / 3.0,
+            evaluations,
+        }
+    }
+}
+
+/// Force, torque (both forms) and mutual potential energy of a homogeneous solid in another
+/// body's field, in the frame of its node table, torques about its centroid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolidIntegrals {
+    /// $\mathbf F = -\rho\oint\Phi\,\mathrm d\mathbf S$ (force on the solid).
+    pub force: Vec3,
+    /// $\mathbf M = -\rho\oint\Phi\,(\mathbf r-\mathbf o)\times\mathrm d\mathbf S$.
+    pub torque: Vec3,
+    /// $\mathbf M = \tfrac\rho2\oint|\mathbf r-\mathbf o|^2\,\mathrm d\mathbf S\times\mathbf a$: the
+    /// same torque by the second form; the two agree to quadrature accuracy.
+    pub torque_gradient_form: Vec3,
+    /// $V = \rho\int\Phi\,\mathrm dV$ (negative); valid when the source's matter is outside the
+    /// solid.
+    pub potential_energy: Real,
+    /// Field evaluations spent.
+    pub evaluations: usize,
+}
+
+#[inline]
+fn reflect_polar(v: &Vec3, axis: usize) -> Vec3 {
+    let mut r = *v;
+    r[axis] = -r[axis];
+    r
+}
+
+#[inline]
+fn reflect_axial(v: &Vec3, axis: usize) -> Vec3 {
+    -reflect_polar(v, axis)
+}
+
+/// The solid loop over parallel slices of points and weighted area vectors (table frame),
+/// moments about `origin`.
+#[inline(never)]
+pub(crate) fn solid_sums<P: Potential + ?Sized>(
+    points: &[Vec3],
+    area_vectors: &[Vec3],
+    origin: &Vec3,
+    source: &P,
+    map: &FrameMap,
+) -> SolidSums {
+    let mut flux = CompensatedSum3::new();
+    let mut moment = CompensatedSum3::new();
+    let mut gradient_moment = CompensatedSum3::new();
+    let mut energy = CompensatedSum::new();
+    let (mut flux_size, mut moment_size, mut energy_size) = (0.0, 0.0, 0.0);
+    // ∮ dS = 0 and ∮ x × dS = 0: the potential at the centroid can be taken out of the force
+    // and torque sums, whose terms then shrink by the ratio of size to distance.
+    let reference = source.potential(&map.apply(origin));
+    for (block_points, block_weights) in points.chunks(BLOCK).zip(area_vectors.chunks(BLOCK)) {
+        let mut f = Vec3::zeros();
+        let mut m = Vec3::zeros();
+        let mut g = Vec3::zeros();
+        let mut e = 0.0;
+        for (r, w) in block_points.iter().zip(block_weights) {
+            let field = source.field(&map.apply(r));
+            let phi = field.potential;
+            let a = map.back(&field.acceleration);
+            let x = r - origin;
+            let half_x2 = 0.5 * x.norm_squared();
+            let x_cross_w = x.cross(w);
+            let (e_potential, e_gradient) = (phi * x.dot(w), half_x2 * a.dot(w));
+            let relative = phi - reference;
+            f += w * relative;
+            m += x_cross_w * relative;
+            g += w.cross(&a) * half_x2;
+            e += e_potential + e_gradient;
+            flux_size += relative.abs() * w.norm();
+            moment_size += relative.abs() * x_cross_w.norm();
+            energy_size += e_potential.abs() + e_gradient.abs();
+        }
+        flux.add(&f);
+        moment.add(&m);
+        gradient_moment.add(&g);
+        energy.add(e);
+    }
+    SolidSums {
+        potential_flux: flux.value(),
+        potential_moment: moment.value(),
+        gradient_moment: gradient_moment.value(),
+        energy_flux: energy.value(),
+        potential_flux_magnitude: flux_size,
+        potential_moment_magnitude: moment_size,
+        energy_flux_magnitude: energy_size,
+    }
+}
+
+/// Force, torque (both forms) and energy of a homogeneous solid of density `density` whose
+/// closed surface is tabulated by `nodes`, in the field of `source`; `map` takes the table's
+/// frame into the source's body frame. Results are in the table's frame, torques about the
+/// table's [`origin`](SurfaceNodes::origin) (the solid's centroid).
+///
+/// Generic over the source, so a user's own potential type gets a monomorphised loop; any
+/// [`Surface`](crate::Surface) and any rule make the table. Valid when the source's matter lies
+/// outside the solid (the energy needs $\nabla^2\Phi = 0$ inside it); this function does not
+/// check it (the [`InteractionEngine`](super::InteractionEngine) does).
+///
+/// ```
+/// use surfgrav_potentials::{PointMass, Potential};
+/// use surfgrav_quadrature::{GaussLegendre, PeriodicTrapezoid, Rule1D};
+/// use surfgrav_surfaces::interaction::{integrate_over_solid, FrameMap};
+/// use surfgrav_surfaces::{Ellipsoid, Interval, Rule1d, SurfaceNodes, Vec3};
+///
+/// // A unit sphere of mass 1 and a point mass 1 at distance 3: F = 1/9 toward it, V = −1/3.
+/// let sphere = Ellipsoid::sphere(1.0)?;
+/// let azimuth = PeriodicTrapezoid::new(32, 0.0, 1.0)?;
+/// let height = GaussLegendre::new(20, -1.0, 1.0)?;
+/// let table = SurfaceNodes::with_periodic_rule(
+///     &sphere.azimuth_height(),
+///     Rule1d::new(azimuth.nodes(), azimuth.weights(), Interval::UNIT)?,
+///     Rule1d::new(height.nodes(), height.weights(), Interval::SYMMETRIC_UNIT)?,
+/// )?;
+/// let point = PointMass::new(1.0)?;
+/// let map = FrameMap::new(&nalgebra::Rotation3::identity(), &Vec3::new(-3.0, 0.0, 0.0))?;
+/// let density = 1.0 / sphere.volume();
+/// let result = integrate_over_solid(&table, density, &point, &map);
+/// assert!((result.force - Vec3::new(1.0 / 9.0, 0.0, 0.0)).norm() < 1e-14);
+/// assert!((result.potential_energy + 1.0 / 3.0).abs() < 1e-14);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn integrate_over_solid<P: Potential + ?Sized>(
+    nodes: &SurfaceNodes,
+    density: Real,
+    source: &P,
+    map: &FrameMap,
+) -> SolidIntegrals {
+    solid_sums(
+        nodes.points(),
+        nodes.weighted_area_vectors(),
+        &nodes.origin(),
+        source,
+        map,
+    )
+    .integrals(density, nodes.len())
+}
+
+/// The raw node sums over a lamina (table frame; unit normal $\hat{\mathbf n}$, centre
+/// $\mathbf c$, $\mathbf x = \mathbf r - \mathbf c$, $a_n = \mathbf a\cdot\hat{\mathbf n}$).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct LaminaSums {
+    /// $\sum_k w_k \Phi_k \approx \iint\Phi\,\mathrm dA$.
+    pub area_potential: Real,
+    /// $\sum_k w_k a_{n,k}$.
+    pub area_normal_acceleration: Real,
+    /// $\sum_k w_k a_{n,k}\, \mathbf x_k\times\hat{\mathbf n}$.
+    pub area_normal_moment: Vec3,
+    /// $\sum_k w_k \mathbf a_k$ (plain area form of the force, a check).
+    pub area_acceleration: Vec3,
+    /// $\sum_k w_k\, \mathbf x_k\times\mathbf a_k$ (plain area form of the torque, a check).
+    pub area_moment: Vec3,
+    /// $\sum_i (\Phi(\boldsymbol\rho_i) - \Phi_0)\,\boldsymbol\nu_i \approx \oint\Phi\,\hat{\boldsymbol\nu}\,\mathrm dl$,
+    /// $\Phi_0$ the source's potential at the centre ($\oint\hat{\boldsymbol\nu}\,\mathrm dl = 0$).
+    pub rim_potential_flux: Vec3,
+    /// $\sum_k w_k |a_{n,k}| + \sum_i |\Phi_i - \Phi_0|\,|\boldsymbol\nu_i|$: the size of the force's terms.
+    pub force_magnitude: Real,
+    /// $\sum_k w_k |a_{n,k}|\,|\mathbf x_k|$: the size of the torque's terms.
+    pub moment_magnitude: Real,
+}
+
+impl LaminaSums {
+    pub(crate) fn mirrored(&self, axis: usize) -> Self {
+        Self {
+            area_potential: self.area_potential,
+            area_normal_acceleration: self.area_normal_acceleration,
+            area_normal_moment: reflect_axial(&self.area_normal_moment, axis),
+            area_acceleration: reflect_polar(&self.area_acceleration, axis),
+            area_moment: reflect_axial(&self.area_moment, axis),
+            rim_potential_flux: reflect_polar(&self.rim_potential_flux, axis),
+            ..*self
+        }
+    }
+
+    pub(crate) fn plus(&self, other: &Self) -> Self {
+        Self {
+            area_potential: self.area_potential + other.area_potential,
+            area_normal_acceleration: self.area_normal_acceleration
+                + other.area_normal_acceleration,
+            area_normal_moment: self.area_normal_moment + other.area_normal_moment,
+            area_acceleration: self.area_acceleration + other.area_acceleration,
+            area_moment: self.area_moment + other.area_moment,
+            rim_potential_flux: self.rim_potential_flux + other.rim_potential_flux,
+            force_magnitude: self.force_magnitude + other.force_magnitude,
+            moment_magnitude: self.moment_magnitude + other.moment_magnitude,
+        }
+    }
+
+    /// The physical integrals for surface density σ and unit normal $\hat{\mathbf n}$:
+    /// $\mathbf F = \sigma\hat{\mathbf n}\iint a_n\,\mathrm dA - \sigma\oint\Phi\hat{\boldsymbol\nu}\,\mathrm dl$,
+    /// $\mathbf M = \sigma\iint a_n\,\mathbf x\times\hat{\mathbf n}\,\mathrm dA$, $V = \sigma\iint\Phi\,\mathrm dA$.
+    pub fn integrals(
+        &self,
+        surface_density: Real,
+        normal: &Vec3,
+        evaluations: usize,
+    ) -> LaminaIntegrals {
+        let s = surface_density;
+        LaminaIntegrals {
+            force: s * (normal * self.area_normal_acceleration - self.rim_potential_flux),
+            torque: s * self.area_normal_moment,
+            force_area_form: s * self.area_acceleration,
+            torque_area_form: s * self.area_moment,
+            potential_energy: s * self.area_potential,
+            evaluations,
+        }
+    }
+}
+
+/// Force, torque and energy of a uniform lamina in another body's field (table frame, torque
+/// about the disk centre), with the plain area forms as checks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LaminaIntegrals {
+    /// $\sigma\hat{\mathbf n}\iint a_n\,\mathrm dA - \sigma\oint\Phi\,\hat{\boldsymbol\nu}\,\mathrm dl$.
+    pub force: Vec3,
+    /// $\sigma\iint a_n\,(\mathbf r-\mathbf c)\times\hat{\mathbf n}\,\mathrm dA$.
+    pub torque: Vec3,
+    /// $\sigma\iint\mathbf a\,\mathrm dA$: the same force by the area form.
+    pub force_area_form: Vec3,
+    /// $\sigma\iint(\mathbf r-\mathbf c)\times\mathbf a\,\mathrm dA$: the same torque by the area form.
+    pub torque_area_form: Vec3,
+    /// $V = \sigma\iint\Phi\,\mathrm dA$ (negative).
+    pub potential_energy: Real,
+    /// Field evaluations spent (area and rim nodes).
+    pub evaluations: usize,
+}
+
+/// The lamina loop (table frame).
+#[inline(never)]
+pub(crate) fn lamina_sums<P: Potential + ?Sized>(
+    nodes: &LaminaNodes,
+    source: &P,
+    map: &FrameMap,
+) -> LaminaSums {
+    let n = nodes.normal();
+    let c = nodes.centre();
+    let mut potential = CompensatedSum::new();
+    let mut normal_acc = CompensatedSum::new();
+    let mut normal_moment = CompensatedSum3::new();
+    let mut acc = CompensatedSum3::new();
+    let mut moment = CompensatedSum3::new();
+    let (mut force_size, mut moment_size) = (0.0, 0.0);
+    for (block_points, block_weights) in nodes
+        .area_points()
+        .chunks(BLOCK)
+        .zip(nodes.area_weights().chunks(BLOCK))
+    {
+        let (mut p, mut na, mut nm, mut ac, mut mo) =
+            (0.0, 0.0, Vec3::zeros(), Vec3::zeros(), Vec3::zeros());
+        for (r, &w) in block_points.iter().zip(block_weights) {
+            let field = source.field(&map.apply(r));
+            let a = map.back(&field.acceleration);
+            let x = r - c;
+            let an = a.dot(&n);
+            p += w * field.potential;
+            na += w * an;
+            nm += x.cross(&n) * (w * an);
+            ac += a * w;
+            mo += x.cross(&a) * w;
+            force_size += w * an.abs();
+            moment_size += w * an.abs() * x.norm();
+        }
+        potential.add(p);
+        normal_acc.add(na);
+        normal_moment.add(&nm);
+        acc.add(&ac);
+        moment.add(&mo);
+    }
+    let mut rim = CompensatedSum3::new();
+    // ∮ ν̂ dl = 0 around the rim: the potential at the centre comes out of the rim sum.
+    let reference = source.potential(&map.apply(&c));
+    for (block_points, block_normals) in nodes
+        .rim_points()
+        .chunks(BLOCK)
+        .zip(nodes.rim_weighted_normals().chunks(BLOCK))
+    {
+        let mut s = Vec3::zeros();
+        for (r, nu) in block_points.iter().zip(block_normals) {
+            let relative = source.potential(&map.apply(r)) - reference;
+            s += nu * relative;
+            force_size += relative.abs() * nu.norm();
+        }
+        rim.add(&s);
+    }
+    LaminaSums {
+        area_potential: potential.value(),
+        area_normal_acceleration: normal_acc.value(),
+        area_normal_moment: normal_moment.value(),
+        area_acceleration: acc.value(),
+        area_moment: moment.value(),
+        rim_potential_flux: rim.value(),
+        force_magnitude: force_size,
+        moment_magnitude: moment_size,
+    }
+}
+
+/// Force, torque and energy of a uniform lamina of surface density `surface_density`
+/// tabulated by `nodes`, in the field of `source` (see [`integrate_over_solid`] for `map` and
+/// the frames). Valid when the source does not touch the lamina.
+pub fn integrate_over_lamina<P: Potential + ?Sized>(
+    nodes: &LaminaNodes,
+    surface_density: Real,
+    source: &P,
+    map: &FrameMap,
+) -> LaminaIntegrals {
+    lamina_sums(nodes, source, map).integrals(
+        surface_density,
+        &nodes.normal(),
+        nodes.area_points().len() + nodes.rim_points().len(),
+    )
+}

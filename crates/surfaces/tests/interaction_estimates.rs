@@ -1,0 +1,172 @@
+//! The error estimate is not optimistic: for every method, parametrisation and requested
+//! tolerance, the true error (against values converged far beyond it) is at most the
+//! estimate, and the estimate meets the tolerance. Also snapshots of the evaluation counts
+//! for the founding paper's pair, so that silent changes of the ladder show.
+
+mod interaction_support;
+
+use interaction_support::*;
+use surfgrav_potentials::{Ellipsoid as SolidEllipsoid, Pose, Spheroid, UniformDisk};
+use surfgrav_surfaces::interaction::{
+    Body, Interaction, InteractionOptions, MethodChoice, Parametrisation, SurfaceChoice,
+};
+
+struct Case {
+    label: &'static str,
+    a: Body,
+    b: Body,
+    pose_a: Pose,
+    pose_b: Pose,
+}
+
+fn cases() -> Vec<Case> {
+    let prolate = || Body::spheroid(Spheroid::new(0.5, 1.2, 0.8).unwrap()).unwrap();
+    let triaxial = |a, b, c, m| Body::ellipsoid(SolidEllipsoid::new(a, b, c, m).unwrap()).unwrap();
+    let mut cases = vec![];
+    for (label, d) in [
+        ("paper pair, gap 0.05", 2.05),
+        ("paper pair 2.1", 2.1),
+        ("paper pair 3", 3.0),
+        ("paper pair 7", 7.0),
+        ("paper pair 30", 30.0),
+    ] {
+        cases.push(Case {
+            label,
+            a: paper_spheroid(),
+            b: paper_spheroid(),
+            pose_a: Pose::identity(),
+            pose_b: pose([d, 0.0, 0.0], [0.0; 3]),
+        });
+    }
+    cases.push(Case {
+        label: "paper pair tilted and rotated",
+        a: paper_spheroid(),
+        b: paper_spheroid(),
+        pose_a: pose([0.0; 3], [0.1, 0.3, -0.2]),
+        pose_b: pose([2.2, 0.3, 0.5], [0.6, -0.2, 0.4]),
+    });
+    cases.push(Case {
+        label: "oblate and prolate",
+        a: paper_spheroid(),
+        b: prolate(),
+        pose_a: Pose::identity(),
+        pose_b: pose([1.6, 0.6, 1.1], [0.0, 0.8, 0.0]),
+    });
+    cases.push(Case {
+        label: "disk above a spheroid",
+        a: Body::disk(UniformDisk::new(0.8, 0.5).unwrap()).unwrap(),
+        b: paper_spheroid(),
+        pose_a: pose([0.2, -0.1, 0.6], [0.2, 0.1, 0.0]),
+        pose_b: Pose::identity(),
+    });
+    cases.push(Case {
+        label: "triaxial pair",
+        a: triaxial(1.0, 0.6, 0.3, 1.0),
+        b: triaxial(0.8, 0.7, 0.5, 1.5),
+        pose_a: pose([0.0; 3], [0.3, 0.2, 0.1]),
+        pose_b: pose([1.5, 1.2, -0.4], [-0.5, 0.9, 0.3]),
+    });
+    cases
+}
+
+fn reference(case: &Case) -> Interaction {
+    let mut fine = engine(InteractionOptions {
+        relative_tolerance: 1e-14,
+        method: MethodChoice::FixedRules,
+        ..InteractionOptions::default()
+    });
+    let r = best_effort(&mut fine, &case.a, &case.pose_a, &case.b, &case.pose_b);
+    // Far apart, the force's rounding floor (its terms cancel 100-fold) limits the reference.
+    assert!(
+        r.error_estimate <= 1e-12,
+        "{}: reference {:e}",
+        case.label,
+        r.error_estimate
+    );
+    r
+}
+
+#[test]
+fn fixed_rule_estimates_bound_the_true_error() {
+    let mut worst_ratio: f64 = 0.0;
+    for case in cases() {
+        let truth = reference(&case);
+        for parametrisation in [
+            Parametrisation::AzimuthHeight,
+            Parametrisation::PolarAzimuth,
+        ] {
+            for tolerance in [1e-4, 1e-6, 1e-8, 1e-10, 1e-12] {
+                for surface in [SurfaceChoice::A, SurfaceChoice::B] {
+                    let mut e = engine(InteractionOptions {
+                        relative_tolerance: tolerance,
+                        method: MethodChoice::FixedRules,
+                        surface,
+                        parametrisation,
+                        ..InteractionOptions::default()
+                    });
+                    let r = e
+                        .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
+                        .unwrap();
+                    let err = errors(&r, &truth).max();
+                    assert!(r.error_estimate <= tolerance);
+                    assert!(
+                        err <= r.error_estimate + truth.error_estimate,
+                        "{} {parametrisation:?} over {surface:?} at {tolerance:e}: error {err:e} > estimate {:e}",
+                        case.label,
+                        r.error_estimate
+                    );
+                    worst_ratio = worst_ratio.max(err / r.error_estimate);
+                }
+            }
+        }
+    }
+    println!("worst true error / estimate, fixed rules: {worst_ratio:.3}");
+}
+
+#[test]
+fn adaptive_estimates_bound_the_true_error() {
+    let mut worst_ratio: f64 = 0.0;
+    for case in cases().into_iter().filter(|c| !c.label.contains("30")) {
+        let truth = reference(&case);
+        for tolerance in [1e-6, 1e-9, 1e-12] {
+            let mut e = engine(InteractionOptions {
+                relative_tolerance: tolerance,
+                method: MethodChoice::Adaptive,
+                ..InteractionOptions::default()
+            });
+            let r = e
+                .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
+                .unwrap();
+            let err = errors(&r, &truth).max();
+            assert!(r.error_estimate <= tolerance);
+            assert!(
+                err <= r.error_estimate + truth.error_estimate,
+                "{} adaptive at {tolerance:e}: error {err:e} > estimate {:e}",
+                case.label,
+                r.error_estimate
+            );
+            worst_ratio = worst_ratio.max(err / r.error_estimate);
+        }
+    }
+    println!("worst true error / estimate, adaptive: {worst_ratio:.3}");
+}
+
+/// Evaluation counts of the default engine for the founding paper's pair (snapshot: a change
+/// of the ladder, the clustering or the start prediction shows here).
+#[test]
+fn evaluation_counts_for_the_paper_pair() {
+    let mut counts = vec![];
+    for d in [2.1, 2.55, 3.0, 7.0, 30.0] {
+        let r = surfgrav_surfaces::interaction::interact(
+            &paper_spheroid(),
+            &Pose::identity(),
+            &paper_spheroid(),
+            &pose([d, 0.0, 0.0], [0.0; 3]),
+        )
+        .unwrap();
+        counts.push(r.evaluations);
+    }
+    assert_eq!(counts, SNAPSHOT, "evaluation counts changed: {counts:?}");
+}
+
+const SNAPSHOT: [usize; 5] = [506, 262, 210, 128, 110];
