@@ -18,6 +18,7 @@ use std::str::FromStr;
 use surfgrav_potentials::{
     BodyError, Ellipsoid, PointMass, Potential, Sphere, Spheroid, UniformDisk, Vec3,
 };
+use surfgrav_surfaces::interaction::{Body, InteractionError};
 use thiserror::Error;
 
 /// Why a body spec or a vector argument could not be used.
@@ -248,49 +249,88 @@ impl fmt::Display for BodySpec {
     }
 }
 
+/// A validated body of any kind.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BuiltBody {
+    /// A point mass.
+    Point(PointMass),
+    /// A homogeneous sphere.
+    Sphere(Sphere),
+    /// A homogeneous spheroid.
+    Spheroid(Spheroid),
+    /// A homogeneous triaxial ellipsoid.
+    Ellipsoid(Ellipsoid),
+    /// A uniform thin disk.
+    Disk(UniformDisk),
+}
+
+impl BuiltBody {
+    /// The body as a potential.
+    pub fn into_potential(self) -> Box<dyn Potential> {
+        match self {
+            BuiltBody::Point(b) => Box::new(b),
+            BuiltBody::Sphere(b) => Box::new(b),
+            BuiltBody::Spheroid(b) => Box::new(b),
+            BuiltBody::Ellipsoid(b) => Box::new(b),
+            BuiltBody::Disk(b) => Box::new(b),
+        }
+    }
+
+    /// The body with its integration geometry, for the interaction engine.
+    pub fn into_interaction_body(self) -> Result<Body, InteractionError> {
+        match self {
+            BuiltBody::Point(b) => Ok(Body::point_mass(b)),
+            BuiltBody::Sphere(b) => Body::sphere(b),
+            BuiltBody::Spheroid(b) => Body::spheroid(b),
+            BuiltBody::Ellipsoid(b) => Body::ellipsoid(b),
+            BuiltBody::Disk(b) => Body::disk(b),
+        }
+    }
+}
+
 impl BodySpec {
     /// Builds the validated body with gravitational constant `g`.
-    pub fn build(&self, g: f64) -> Result<Box<dyn Potential>, SpecError> {
+    pub fn build(&self, g: f64) -> Result<BuiltBody, SpecError> {
         let kind = self.kind.name();
         let wrap = |source| SpecError::Body { kind, source };
         let d = &self.dimensions;
-        let body: Box<dyn Potential> = match (self.kind, self.amount) {
-            (BodyKind::Point, Amount::Mass(m)) => Box::new(
+        let body = match (self.kind, self.amount) {
+            (BodyKind::Point, Amount::Mass(m)) => BuiltBody::Point(
                 PointMass::new(m)
                     .and_then(|b| b.with_gravitational_constant(g))
                     .map_err(wrap)?,
             ),
-            (BodyKind::Sphere, Amount::Mass(m)) => Box::new(
+            (BodyKind::Sphere, Amount::Mass(m)) => BuiltBody::Sphere(
                 Sphere::new(d[0], m)
                     .and_then(|b| b.with_gravitational_constant(g))
                     .map_err(wrap)?,
             ),
-            (BodyKind::Sphere, Amount::Density(rho)) => Box::new(
+            (BodyKind::Sphere, Amount::Density(rho)) => BuiltBody::Sphere(
                 Sphere::with_density(d[0], rho)
                     .and_then(|b| b.with_gravitational_constant(g))
                     .map_err(wrap)?,
             ),
-            (BodyKind::Spheroid, Amount::Mass(m)) => Box::new(
+            (BodyKind::Spheroid, Amount::Mass(m)) => BuiltBody::Spheroid(
                 Spheroid::new(d[0], d[1], m)
                     .and_then(|b| b.with_gravitational_constant(g))
                     .map_err(wrap)?,
             ),
-            (BodyKind::Spheroid, Amount::Density(rho)) => Box::new(
+            (BodyKind::Spheroid, Amount::Density(rho)) => BuiltBody::Spheroid(
                 Spheroid::with_density(d[0], d[1], rho)
                     .and_then(|b| b.with_gravitational_constant(g))
                     .map_err(wrap)?,
             ),
-            (BodyKind::Ellipsoid, Amount::Mass(m)) => Box::new(
+            (BodyKind::Ellipsoid, Amount::Mass(m)) => BuiltBody::Ellipsoid(
                 Ellipsoid::new(d[0], d[1], d[2], m)
                     .and_then(|b| b.with_gravitational_constant(g))
                     .map_err(wrap)?,
             ),
-            (BodyKind::Ellipsoid, Amount::Density(rho)) => Box::new(
+            (BodyKind::Ellipsoid, Amount::Density(rho)) => BuiltBody::Ellipsoid(
                 Ellipsoid::with_density(d[0], d[1], d[2], rho)
                     .and_then(|b| b.with_gravitational_constant(g))
                     .map_err(wrap)?,
             ),
-            (BodyKind::Disk, Amount::Mass(m)) => Box::new(
+            (BodyKind::Disk, Amount::Mass(m)) => BuiltBody::Disk(
                 UniformDisk::new(d[0], m)
                     .and_then(|b| b.with_gravitational_constant(g))
                     .map_err(wrap)?,

@@ -1,0 +1,189 @@
+//! The `interact` command as a user meets it.
+
+use std::process::{Command, Output};
+
+fn surfgrav(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_surfgrav"))
+        .args(args)
+        .env("RUST_BACKTRACE", "1")
+        .output()
+        .expect("the binary runs")
+}
+
+fn vector(v: &serde_json::Value) -> [f64; 3] {
+    let a = v.as_array().expect("an array");
+    [
+        a[0].as_f64().unwrap(),
+        a[1].as_f64().unwrap(),
+        a[2].as_f64().unwrap(),
+    ]
+}
+
+#[test]
+fn two_spheres_attract_by_newtons_law() {
+    let out = surfgrav(&[
+        "interact",
+        "--a",
+        "sphere:radius=1,mass=2",
+        "--b",
+        "sphere:radius=0.5,mass=3",
+        "--position",
+        "0,4,0",
+        "--g",
+        "0.5",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let f = vector(&v["force_on_a"]);
+    // G mA mB / d² = 0.5 · 2 · 3 / 16 toward B (+y).
+    assert!(
+        (f[1] - 0.1875).abs() < 1e-15 && f[0] == 0.0 && f[2] == 0.0,
+        "{f:?}"
+    );
+    let e = v["potential_energy"].as_f64().unwrap();
+    assert!((e + 0.5 * 2.0 * 3.0 / 4.0).abs() < 1e-15, "{e}");
+    assert_eq!(v["method"], "analytic-point");
+    for key in [
+        "force_on_b",
+        "torque_on_a",
+        "torque_on_b",
+        "evaluations",
+        "error_estimate",
+    ] {
+        assert!(!v[key].is_null(), "missing {key}");
+    }
+}
+
+#[test]
+fn paper_spheroids_obey_newtons_third_law_and_report_their_method() {
+    let out = surfgrav(&[
+        "interact",
+        "--a",
+        "spheroid:equatorial=1,polar=0.25,mass=1",
+        "--b",
+        "spheroid:equatorial=1,polar=0.25,mass=1",
+        "--position",
+        "3,0,0",
+        "--orientation-b",
+        "0,0,0.3",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (fa, fb) = (vector(&v["force_on_a"]), vector(&v["force_on_b"]));
+    for k in 0..3 {
+        assert_eq!(fa[k], -fb[k]);
+    }
+    // Attractive, and stronger than point masses at the same distance (oblate bodies side by
+    // side in their common equatorial plane attract more than 1/9).
+    assert!(fa[0] > 1.0 / 9.0 && fa[0] < 0.2, "{fa:?}");
+    assert!(v["potential_energy"].as_f64().unwrap() < -1.0 / 3.0);
+    assert!(v["method"].as_str().unwrap().starts_with("surface-over-"));
+    assert!(v["evaluations"].as_u64().unwrap() > 0);
+    let err = v["error_estimate"].as_f64().unwrap();
+    assert!(err > 0.0 && err <= 1e-12, "{err}");
+}
+
+#[test]
+fn bad_input_is_one_line_exit_2() {
+    let a = "spheroid:equatorial=1,polar=0.25,mass=1";
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["interact", "--a", a, "--b", a, "--position", "1.5,0,0"],
+            "overlap",
+        ),
+        (
+            &["interact", "--a", a, "--b", a, "--position", "3,0"],
+            "--position",
+        ),
+        (
+            &[
+                "interact",
+                "--a",
+                a,
+                "--b",
+                a,
+                "--position",
+                "3,0,0",
+                "--tolerance",
+                "0",
+            ],
+            "--tolerance",
+        ),
+        (
+            &[
+                "interact",
+                "--a",
+                a,
+                "--b",
+                a,
+                "--position",
+                "3,0,0",
+                "--tolerance",
+                "-1e-9",
+            ],
+            "--tolerance",
+        ),
+        (
+            &[
+                "interact",
+                "--a",
+                a,
+                "--b",
+                a,
+                "--position",
+                "3,0,0",
+                "--orientation-a",
+                "1,x,0",
+            ],
+            "--orientation-a",
+        ),
+        (
+            &[
+                "interact",
+                "--a",
+                "sphere:radius=-1,mass=1",
+                "--b",
+                a,
+                "--position",
+                "3,0,0",
+            ],
+            "--a",
+        ),
+        (
+            &[
+                "interact",
+                "--a",
+                a,
+                "--b",
+                "blob:mass=1",
+                "--position",
+                "3,0,0",
+            ],
+            "--b",
+        ),
+    ];
+    for (args, needle) in cases {
+        let out = surfgrav(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(out.stdout.is_empty(), "{args:?} printed to stdout");
+        assert_eq!(
+            stderr.trim_end().lines().count(),
+            1,
+            "{args:?}: not one line: {stderr}"
+        );
+        assert!(
+            stderr.contains(needle),
+            "{args:?}: `{stderr}` does not name `{needle}`"
+        );
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}
