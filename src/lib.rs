@@ -7,6 +7,9 @@
 //! - [`surfaces`]: body surfaces and their area vectors;
 //! - [`quadrature`]: quadrature rules as data;
 //! - [`dynamics`]: two-body motion.
+//!
+//! The README follows; its Rust examples are compiled and run as doctests.
+#![doc = include_str!("../README.md")]
 pub use surfgrav_dynamics as dynamics;
 pub use surfgrav_potentials as potentials;
 pub use surfgrav_quadrature as quadrature;
