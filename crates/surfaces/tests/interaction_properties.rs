@@ -116,6 +116,12 @@ fn pair(gap: std::ops::Range<f64>) -> impl Strategy<Value = Pair> {
         )
 }
 
+/// Rounding floor of the reference volume quadrature: 48³ ≈ 1.1e5 nodes summed in double
+/// precision, a rounding its level-to-level difference cannot see. Disagreements of 1.7e-15
+/// were seen where the level difference claimed 3e-19; 1e-14 leaves margin while staying two
+/// orders below the engine's 1e-12.
+const VOLUME_QUADRATURE_ROUNDING: f64 = 1e-14;
+
 fn fixed(surface: SurfaceChoice, tolerance: f64) -> InteractionOptions {
     options(tolerance, MethodChoice::FixedRules, surface)
 }
@@ -153,8 +159,26 @@ proptest! {
         let (a, b) = p.bodies();
         let over_a = engine(fixed(SurfaceChoice::A, requested())).interact(&a, &p.pose_a, &b, &p.pose_b);
         prop_assume!(!matches!(over_a, Err(InteractionError::Overlap { .. } | InteractionError::Touching { .. })));
-        let over_a = over_a.unwrap();
-        let over_b = engine(fixed(SurfaceChoice::B, requested())).interact(&a, &p.pose_a, &b, &p.pose_b).unwrap();
+        // A nearly touching pair may not reach the tolerance within the evaluation budget. The
+        // engine must then say so (never return a silent number); its best result's estimate
+        // is the last level difference, which is not a certified bound (seen: true 9.4e-8,
+        // estimate 9.2e-8), so only converged results are compared.
+        let over_b = engine(fixed(SurfaceChoice::B, requested())).interact(&a, &p.pose_a, &b, &p.pose_b);
+        let (over_a, over_b) = match (over_a, over_b) {
+            (Ok(x), Ok(y)) => (x, y),
+            (x, y) => {
+                for r in [x, y] {
+                    match r {
+                        Ok(_) => {}
+                        Err(InteractionError::ToleranceNotMet { error_estimate, .. }) => {
+                            prop_assert!(error_estimate > requested());
+                        }
+                        Err(e) => prop_assert!(false, "unexpected engine error: {e}"),
+                    }
+                }
+                return Ok(());
+            }
+        };
         let err = errors(&over_a, &over_b);
         prop_assert!(err.max() <= over_a.error_estimate + over_b.error_estimate,
             "{err:?}, estimates {:e} {:e}", over_a.error_estimate, over_b.error_estimate);
@@ -215,7 +239,9 @@ proptest! {
         let reference_error = ((f - f2).norm() / f.norm()).max((v - v2).abs() / v.abs())
             .max((m - m2).norm() / m.norm().max(v.abs()));
         prop_assume!(reference_error < 1e-11);
-        let bound = r.error_estimate + reference_error;
+        // The level difference of the volume quadrature cannot see its own rounding, which
+        // both levels share (~1e5 terms summed in double precision): add a floor for it.
+        let bound = r.error_estimate + reference_error.max(VOLUME_QUADRATURE_ROUNDING);
         prop_assert!((r.force_on_a - f).norm() <= bound * f.norm(),
             "F {:?} vs {:?}: {:e} > estimate {:e} + reference {:e}", r.force_on_a, f,
             (r.force_on_a - f).norm() / f.norm(), r.error_estimate, reference_error);
