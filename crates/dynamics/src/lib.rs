@@ -3,6 +3,8 @@
 //!
 //! - [`state`]: the two-body state (positions, velocities, orientations, spins) and trajectory
 //!   samples.
+//! - [`engine_model`]: models backed by the surface-integral engine ([`EngineModel`]) and the
+//!   tabulated central-force fast path ([`SceneModel`]).
 //! - [`model`]: the [`InteractionModel`] trait (force on A, mutual energy, contact distance) with
 //!   point masses and closure-defined central pairs.
 //! - [`integrate`]: the [`Integrator`] trait; fixed-step RK4, leapfrog and symplectic
@@ -43,6 +45,7 @@
 //! ```
 
 pub mod diagnostics;
+pub mod engine_model;
 pub mod integrate;
 pub mod interpolant;
 pub mod interpolate;
@@ -55,6 +58,9 @@ pub mod tolerance;
 pub use diagnostics::{
     angular_momentum, kinetic_energy, total_energy, CompensatedSum, ConservationMonitor,
     ConservationStatistics, SeriesAccumulator, SeriesStatistics,
+};
+pub use engine_model::{
+    EngineModel, EngineModelError, SceneModel, SceneSettings, TableReport, ALIGNMENT_SINE,
 };
 pub use integrate::{
     Adaptive, ContactEvent, DynamicsError, FixedScheme, FixedStep, Integrator, RunSummary,

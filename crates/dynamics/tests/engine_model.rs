@@ -1,0 +1,354 @@
+//! The engine-backed models on the founding paper's 2S scene: the tabulated fast path against the
+//! direct surface integral, the precession figures of issue 5, energy conservation, refusal of
+//! scenes with torques, contact distances.
+
+use nalgebra::UnitQuaternion;
+use surfgrav_dynamics::{
+    run_with_diagnostics, BodyState, DynamicsError, EngineModel, FixedScheme, FixedStep,
+    Integrator, InteractionModel, OrbitAnalyser, RunReport, SceneModel, SceneSettings, Termination,
+    TwoBodyState,
+};
+use surfgrav_potentials::{Pose, Real, Sphere, Spheroid, UniformDisk, Vec3};
+use surfgrav_surfaces::interaction::{Body, InteractionOptions};
+
+/// Issue 4: the direct and tabulated paths give the same orbit to this in separation.
+const SAME_ORBIT_SEPARATION: Real = 1e-9;
+/// Issue 4: the table's error against the direct energy.
+const TABLE_RELATIVE: Real = 1e-13;
+
+fn spheroid() -> Body {
+    Body::spheroid(Spheroid::new(1.0, 0.25, 1.0).unwrap()).unwrap()
+}
+
+/// paper-2s: oblate spheroids a = 1, c = 0.25, m = 1, G = 1, R = (∓3.5, 0, 0), V = (0, ±0.2, 0).
+fn paper_2s_initial() -> TwoBodyState {
+    TwoBodyState::new(
+        BodyState::new(Vec3::new(-3.5, 0.0, 0.0), Vec3::new(0.0, 0.2, 0.0)),
+        BodyState::new(Vec3::new(3.5, 0.0, 0.0), Vec3::new(0.0, -0.2, 0.0)),
+    )
+}
+
+fn scene(interpolate: bool) -> SceneModel {
+    let settings = SceneSettings {
+        interpolate,
+        ..SceneSettings::default()
+    };
+    SceneModel::build(spheroid(), spheroid(), &paper_2s_initial(), &settings).unwrap()
+}
+
+fn run(model: &dyn InteractionModel, t_end: Real, separations: &mut Vec<Real>) -> RunReport {
+    let mut rk4 = FixedStep::new(FixedScheme::RungeKutta4, 0.1).unwrap();
+    run_with_diagnostics(&mut rk4, model, &paper_2s_initial(), 0.0, t_end, &mut |s| {
+        separations.push(s.state.separation())
+    })
+    .unwrap()
+}
+
+#[test]
+fn paper_2s_is_central_and_uses_the_table() {
+    let fast = scene(true);
+    assert!(fast.is_interpolated());
+    let report = fast.table_report().unwrap();
+    println!("table: {report:?}");
+    // The orbit stays between pericentre ≈ 2.5472 and the start, 7.
+    assert!(report.reachable.0 > 2.54 && report.reachable.0 < 2.55);
+    assert!((report.reachable.1 - 7.0).abs() < 1e-9);
+    assert!(report.tabulated.0 < report.reachable.0 && report.tabulated.1 > report.reachable.1);
+    assert!(!scene(false).is_interpolated());
+}
+
+/// The table against the direct engine at separations between the build's nodes and checks.
+#[test]
+fn table_matches_direct_energy_and_force() {
+    let fast = scene(true);
+    let direct = EngineModel::new(
+        spheroid(),
+        spheroid(),
+        InteractionOptions {
+            relative_tolerance: 1e-13,
+            ..InteractionOptions::default()
+        },
+    )
+    .unwrap();
+    let (low, high) = fast.table_report().unwrap().tabulated;
+    let (mut worst_energy, mut worst_force): (Real, Real) = (0.0, 0.0);
+    for k in 0..=200 {
+        let r = low + (high - low) * (k as Real + 0.5 * (k as Real).sin().abs()) / 201.0;
+        let pa = Pose::new(Vec3::zeros(), Vec3::zeros());
+        let pb = Pose::new(Vec3::new(r, 0.0, 0.0), Vec3::zeros());
+        let v = direct.potential_energy(&pa, &pb).unwrap();
+        let f = direct.force_on_a(&pa, &pb).unwrap();
+        let vt = fast.potential_energy(&pa, &pb).unwrap();
+        let ft = fast.force_on_a(&pa, &pb).unwrap();
+        worst_energy = worst_energy.max(((vt - v) / v).abs());
+        worst_force = worst_force.max((ft - f).norm() / f.norm());
+    }
+    println!("table vs direct: energy {worst_energy:.2e}, force {worst_force:.2e}");
+    assert!(worst_energy <= TABLE_RELATIVE);
+    // Derivative of a degree-20 piece: up to n² = 400 times the value error, see
+    // tests/interpolant.rs; the engine's force itself is certified to 1e-13.
+    assert!(worst_force <= 1e-11);
+}
+
+/// Issue 4: the direct surface integral and the table give the same orbit to 1e-9 in
+/// separation over the full paper-2s run (t = 300, RK4, dt = 0.1, 12 000 force evaluations).
+#[test]
+fn direct_and_tabulated_orbits_agree() {
+    let (mut direct_r, mut table_r) = (Vec::new(), Vec::new());
+    let direct = run(&scene(false), 300.0, &mut direct_r);
+    let table = run(&scene(true), 300.0, &mut table_r);
+    assert_eq!(direct_r.len(), table_r.len());
+    assert_eq!(direct_r.len(), 3001);
+    let worst = direct_r
+        .iter()
+        .zip(&table_r)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, Real::max);
+    println!(
+        "max |Δr| direct vs table: {worst:.2e}; σ(ΔE) direct {:.2e}, table {:.2e}",
+        direct.energy.step_changes.standard_deviation, table.energy.step_changes.standard_deviation
+    );
+    assert!(worst <= SAME_ORBIT_SEPARATION);
+    for report in [&direct, &table] {
+        assert_eq!(report.summary.force_evaluations, 12_001);
+    }
+}
+
+/// Issue 5's independent values for paper-2s, to the digits given.
+#[test]
+fn paper_2s_precession_figures() {
+    let mut separations = Vec::new();
+    let report = run(&scene(true), 300.0, &mut separations);
+    let orbit = &report.orbit;
+    let psi = orbit.precession_angle_deg.unwrap();
+    let rate = orbit.precession_rate_arcmin.unwrap();
+    let radial = orbit.radial_period.unwrap();
+    let azimuthal = orbit.azimuthal_period.unwrap();
+    let minimum = orbit.minimum_separation.unwrap();
+    println!(
+        "paper-2s: ψ_p = {psi:.6}°, Ω_p = {rate:.5}′, T_r = {radial:.6}, T_ψ = {azimuthal:.6}, r_min = {minimum:.7}, σ(ΔE) = {:.3e}",
+        report.energy.step_changes.standard_deviation
+    );
+    assert!((psi - 18.964).abs() < 1e-3);
+    assert!((rate - 24.03).abs() < 1e-2);
+    assert!((radial - 47.355).abs() < 1e-3);
+    assert!((azimuthal - 44.985).abs() < 1e-3);
+    assert!((minimum - 2.5472).abs() < 1e-4);
+}
+
+/// Energy conservation per step, RK4 at dt = 0.1, with the table (energy T + V_table, which the
+/// force conserves exactly as a Hamiltonian) and with the direct engine (energy from the
+/// engine at 1e-12). Issue 5 expects σ(ΔE) ≈ 3e-11; the bound here is that figure's order.
+#[test]
+fn paper_2s_energy_scatter() {
+    let mut separations = Vec::new();
+    let table = run(&scene(true), 300.0, &mut separations);
+    let sigma = table.energy.step_changes.standard_deviation;
+    println!(
+        "σ(ΔE) table: {sigma:.3e}, mean {:.3e}, slope {:.3e}, max drift {:.3e}",
+        table.energy.step_changes.mean,
+        table.energy.step_changes.slope,
+        table.energy.max_relative_drift
+    );
+    assert!(sigma > 0.0 && sigma < 1e-10);
+}
+
+/// Two spheroids with tilted symmetry axes exert torques: the integrator refuses the start.
+#[test]
+fn tilted_spheroids_are_refused() {
+    let mut initial = paper_2s_initial();
+    initial.body_a.orientation = UnitQuaternion::from_axis_angle(&Vec3::y_axis(), 0.4);
+    initial.body_b.orientation = UnitQuaternion::from_axis_angle(&Vec3::x_axis(), -0.3);
+    let model =
+        SceneModel::build(spheroid(), spheroid(), &initial, &SceneSettings::default()).unwrap();
+    // Not central: the fast path is not taken.
+    assert!(!model.is_interpolated());
+    let (pa, pb) = (initial.body_a.pose(), initial.body_b.pose());
+    assert_eq!(model.contact_distance(&pa, &pb), None);
+    let error = FixedStep::new(FixedScheme::RungeKutta4, 0.1)
+        .unwrap()
+        .integrate(&model, &initial, 0.0, 1.0, &mut |_| {})
+        .unwrap_err();
+    assert!(matches!(error, DynamicsError::TorquesNotSupported { .. }));
+    let message = error.to_string();
+    println!("{message}");
+    assert!(message.contains("rotational dynamics"));
+}
+
+/// Coaxial spheroids in their equatorial plane: the torques vanish (to the engine's accuracy)
+/// and the run starts; contact distance is the sum of equatorial radii.
+#[test]
+fn contact_distance_and_overlap() {
+    let model = EngineModel::new(spheroid(), spheroid(), InteractionOptions::default()).unwrap();
+    let pa = Pose::new(Vec3::zeros(), Vec3::zeros());
+    let pb = Pose::new(Vec3::new(3.0, 1.0, 0.0), Vec3::zeros());
+    assert_eq!(model.contact_distance(&pa, &pb), Some(2.0));
+    let above = Pose::new(Vec3::new(3.0, 0.0, 1.0), Vec3::zeros());
+    assert_eq!(model.contact_distance(&pa, &above), None);
+    let (ta, tb) = model.torques(&pa, &pb).unwrap().unwrap();
+    let f = model.force_on_a(&pa, &pb).unwrap();
+    assert!(ta.norm().max(tb.norm()) <= 1e-10 * f.norm() * pb.position.norm());
+    // Overlap maps to the dynamics crate's overlap error.
+    let close = Pose::new(Vec3::new(1.9, 0.0, 0.0), Vec3::zeros());
+    let error = model.force_on_a(&pa, &close).unwrap_err();
+    assert!(matches!(
+        error,
+        surfgrav_dynamics::InteractionError::Overlap { contact_distance, .. } if contact_distance == 2.0
+    ));
+    // A scene overlapping at the start is refused when the model is built.
+    let overlapping = TwoBodyState::new(
+        BodyState::new(Vec3::zeros(), Vec3::zeros()),
+        BodyState::new(Vec3::new(1.5, 0.0, 0.0), Vec3::zeros()),
+    );
+    assert!(SceneModel::build(
+        spheroid(),
+        spheroid(),
+        &overlapping,
+        &SceneSettings::default()
+    )
+    .is_err());
+}
+
+/// A slower start (V = (0, ±0.05, 0)) brings the spheroids edge to edge: both paths stop with a
+/// contact event at separation 2 (sum of the equatorial radii), at the same time.
+#[test]
+fn contact_event_on_both_paths() {
+    let mut initial = paper_2s_initial();
+    initial.body_a.velocity = Vec3::new(0.0, 0.05, 0.0);
+    initial.body_b.velocity = Vec3::new(0.0, -0.05, 0.0);
+    let mut times = Vec::new();
+    for interpolate in [false, true] {
+        let settings = SceneSettings {
+            interpolate,
+            ..SceneSettings::default()
+        };
+        let model = SceneModel::build(spheroid(), spheroid(), &initial, &settings).unwrap();
+        assert_eq!(model.is_interpolated(), interpolate);
+        let summary = FixedStep::new(FixedScheme::RungeKutta4, 0.1)
+            .unwrap()
+            .integrate(&model, &initial, 0.0, 300.0, &mut |_| {})
+            .unwrap();
+        let Termination::Contact(event) = summary.termination else {
+            panic!("no contact: {:?}", summary.termination);
+        };
+        assert!((event.separation - 2.0).abs() <= 1e-8);
+        assert_eq!(event.contact_distance, 2.0);
+        times.push(event.sample.time);
+    }
+    println!("contact times: direct {}, table {}", times[0], times[1]);
+    assert!((times[0] - times[1]).abs() <= 1e-8);
+}
+
+fn disk() -> Body {
+    Body::disk(UniformDisk::new(1.0, 1.0).unwrap()).unwrap()
+}
+
+/// paper-2d (coplanar uniform disks R = 1, m = 1, RK4 dt = 0.01, t = 300): the pair is central,
+/// the table reproduces issue 5's independent values, and the direct closed form gives the
+/// same orbit over the first 50 time units (one pericentre passage).
+#[test]
+fn paper_2d_disks() {
+    let initial = paper_2s_initial();
+    let fast = SceneModel::build(disk(), disk(), &initial, &SceneSettings::default()).unwrap();
+    assert!(fast.is_interpolated());
+    println!("disk table: {:?}", fast.table_report().unwrap());
+    let mut orbit = OrbitAnalyser::new();
+    let mut rk4 = FixedStep::new(FixedScheme::RungeKutta4, 0.01).unwrap();
+    rk4.integrate(&fast, &initial, 0.0, 300.0, &mut |s| orbit.observe(s))
+        .unwrap();
+    let report = orbit.report();
+    let psi = report.precession_angle_deg.unwrap();
+    let rate = report.precession_rate_arcmin.unwrap();
+    let minimum = report.minimum_separation.unwrap();
+    println!("paper-2d: ψ_p = {psi:.6}°, Ω_p = {rate:.5}′, r_min = {minimum:.7}");
+    assert!((psi - 30.2225).abs() < 1e-4);
+    assert!((rate - 38.27).abs() < 1e-2);
+    assert!((minimum - 2.4695).abs() < 1e-4);
+
+    let direct = SceneModel::build(
+        disk(),
+        disk(),
+        &initial,
+        &SceneSettings {
+            interpolate: false,
+            ..SceneSettings::default()
+        },
+    )
+    .unwrap();
+    let mut separations = [Vec::new(), Vec::new()];
+    for (model, out) in [&direct, &fast].into_iter().zip(separations.iter_mut()) {
+        FixedStep::new(FixedScheme::RungeKutta4, 0.01)
+            .unwrap()
+            .integrate(model, &initial, 0.0, 50.0, &mut |s| {
+                out.push(s.state.separation())
+            })
+            .unwrap();
+    }
+    let worst = separations[0]
+        .iter()
+        .zip(&separations[1])
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, Real::max);
+    println!("paper-2d max |Δr| direct vs table (t ≤ 50): {worst:.2e}");
+    assert!(worst <= SAME_ORBIT_SEPARATION);
+}
+
+/// Coaxial spheroids moving out of their equatorial plane, and a sphere beside a spheroid off
+/// its plane, are not central: the direct path is used. Two spheres are central anywhere.
+#[test]
+fn central_test_follows_the_symmetry() {
+    let mut out_of_plane = paper_2s_initial();
+    out_of_plane.body_b.velocity = Vec3::new(0.0, -0.2, 0.01);
+    let model = SceneModel::build(
+        spheroid(),
+        spheroid(),
+        &out_of_plane,
+        &SceneSettings::default(),
+    )
+    .unwrap();
+    assert!(!model.is_interpolated());
+    let sphere = || Body::sphere(Sphere::new(0.5, 1.0).unwrap()).unwrap();
+    let mut anywhere = paper_2s_initial();
+    anywhere.body_b.position = Vec3::new(3.0, 1.0, 2.0);
+    anywhere.body_b.velocity = Vec3::new(0.05, -0.2, 0.1);
+    let spheres =
+        SceneModel::build(sphere(), sphere(), &anywhere, &SceneSettings::default()).unwrap();
+    assert!(spheres.is_interpolated());
+    let (pa, pb) = (anywhere.body_a.pose(), anywhere.body_b.pose());
+    let r = (pb.position - pa.position).norm();
+    let force = spheres.force_on_a(&pa, &pb).unwrap();
+    // Point-mass law for spheres, |F| = G m² / r², to the table's derivative accuracy (see
+    // `table_matches_direct_energy_and_force`).
+    let error = (force.norm() * r * r - 1.0).abs();
+    println!("spheres: table force against G m²/r²: {error:.2e}");
+    assert!(error <= 1e-11);
+    assert_eq!(spheres.contact_distance(&pa, &pb), Some(1.0));
+    let mixed =
+        SceneModel::build(sphere(), spheroid(), &anywhere, &SceneSettings::default()).unwrap();
+    assert!(!mixed.is_interpolated());
+}
+
+#[test]
+fn invalid_settings_are_refused() {
+    for settings in [
+        SceneSettings {
+            range_margin: -0.1,
+            ..SceneSettings::default()
+        },
+        SceneSettings {
+            max_separation_factor: 0.5,
+            ..SceneSettings::default()
+        },
+        SceneSettings {
+            table_tolerance: Real::NAN,
+            ..SceneSettings::default()
+        },
+    ] {
+        let error =
+            SceneModel::build(spheroid(), spheroid(), &paper_2s_initial(), &settings).unwrap_err();
+        assert!(matches!(
+            error,
+            surfgrav_dynamics::EngineModelError::InvalidSetting { .. }
+        ));
+    }
+}
