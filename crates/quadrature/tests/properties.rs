@@ -74,7 +74,12 @@ proptest! {
         let computed = rule.integrate(|x| polynomial.value(x));
         let scale = rule.integrate(|x| polynomial.absolute(x));
         let error = (computed - polynomial.exact_integral()).abs();
-        prop_assert!(error <= CONVERGED_RULE_REL * scale, "error {error:e}, scale {scale:e}");
+        // Nodes are stored as absolute x, rounded to ε|x|; in the scaled variable that is
+        // ε|x|/h, so a narrow interval far from 0 (width 0.01 at x = −10: ×2000) cannot be
+        // integrated more accurately than this amplification allows, whatever the rule.
+        let amplification = (lower.abs().max((lower + width).abs()) / (width / 2.0)).max(1.0);
+        prop_assert!(error <= CONVERGED_RULE_REL * scale * amplification,
+            "error {error:e}, scale {scale:e}, amplification {amplification:e}");
     }
 
     #[test]
