@@ -32,11 +32,10 @@
 //! [`ALIGNMENT_SINE`]); otherwise, or when switched off, the direct path is used.
 //! Outside the tabulated range the table returns [`InteractionError::OutsideRange`].
 //!
-//! # Errors the dynamics error type cannot name
+//! # Engine failures
 //!
-//! A quadrature failure of the engine (tolerance not met, non-finite result) has no variant in
-//! [`InteractionError`]; it is reported as [`InteractionError::NotFinite`] whose `quantity`
-//! names the cause (for a tolerance not met, `value` is the engine's error estimate).
+//! A quadrature failure of the engine (tolerance not met, non-finite result) is reported as
+//! [`InteractionError::Engine`] carrying the separation and the engine's message.
 //!
 //! # Performance (paper-2s: RK4, dt = 0.1, t = 300, 12 001 force evaluations; release build,
 //! one core, example `paper_2s`)
@@ -244,22 +243,18 @@ impl EngineModel {
                     contact_distance: self.contact_distance(pose_a, pose_b).unwrap_or(separation),
                 }
             }
-            // The dynamics error type has no variant for a quadrature failure; the closest
-            // typed report is a non-finite result naming the cause (see the crate notes).
-            EngineError::ToleranceNotMet { error_estimate, .. } => InteractionError::NotFinite {
-                quantity: "force (engine tolerance not met; value is the error estimate)",
-                value: error_estimate,
+            EngineError::ToleranceNotMet { .. } => InteractionError::Engine {
                 separation,
+                message: error.to_string(),
             },
             EngineError::NonFinitePose { .. } => InteractionError::NotFinite {
                 quantity: "pose",
                 value: Real::NAN,
                 separation,
             },
-            _ => InteractionError::NotFinite {
-                quantity: "force (engine failure)",
-                value: Real::NAN,
+            _ => InteractionError::Engine {
                 separation,
+                message: error.to_string(),
             },
         }
     }

@@ -19,8 +19,9 @@
 //! - [`tolerance`]: the accuracy requirements the tests hold this crate to.
 //!
 //! Scope: translational motion only; orientations and spins ride along unchanged, which is exact
-//! where every torque vanishes by symmetry (the founding paper's scenes). Refusing scenes with
-//! torques is the caller's job until rotational dynamics exists.
+//! where every torque vanishes by symmetry (the founding paper's scenes). The integrators refuse,
+//! at the start, a scene whose model reports non-vanishing torques (`TorquesNotSupported`),
+//! until rotational dynamics exists.
 //!
 //! ```
 //! use surfgrav_dynamics::{

@@ -51,6 +51,15 @@ pub enum InteractionError {
         /// Centroid separation.
         separation: Real,
     },
+    /// The model's own computation failed (for the surface-integral engine: the requested
+    /// tolerance was not met within the evaluation budget, or its result was not finite).
+    #[error("the interaction could not be computed at separation {separation}: {message}")]
+    Engine {
+        /// Centroid separation.
+        separation: Real,
+        /// The engine's own message, saying what to change.
+        message: String,
+    },
 }
 
 /// The interaction of two rigid bodies A and B.

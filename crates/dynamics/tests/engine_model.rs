@@ -5,8 +5,8 @@
 use nalgebra::UnitQuaternion;
 use surfgrav_dynamics::{
     run_with_diagnostics, BodyState, DynamicsError, EngineModel, FixedScheme, FixedStep,
-    Integrator, InteractionModel, OrbitAnalyser, RunReport, SceneModel, SceneSettings, Termination,
-    TwoBodyState,
+    Integrator, InteractionError, InteractionModel, OrbitAnalyser, RunReport, SceneModel,
+    SceneSettings, Termination, TwoBodyState,
 };
 use surfgrav_potentials::{Pose, Real, Sphere, Spheroid, UniformDisk, Vec3};
 use surfgrav_surfaces::interaction::{Body, InteractionOptions};
@@ -350,5 +350,29 @@ fn invalid_settings_are_refused() {
             error,
             surfgrav_dynamics::EngineModelError::InvalidSetting { .. }
         ));
+    }
+}
+
+/// An engine that cannot meet its tolerance (1e-17 is below any double-precision rounding
+/// floor, so no budget certifies it) reaches the caller as `InteractionError::Engine` naming
+/// the separation and the engine's reason, never as a number.
+#[test]
+fn engine_failure_is_reported_with_its_reason() {
+    let options = InteractionOptions {
+        relative_tolerance: 1e-17,
+        max_evaluations: 20_000,
+        ..InteractionOptions::default()
+    };
+    let model = EngineModel::new(spheroid(), spheroid(), options).unwrap();
+    let pose_b = Pose::new(Vec3::new(3.0, 0.0, 0.0), Vec3::zeros());
+    match model.force_on_a(&Pose::identity(), &pose_b) {
+        Err(InteractionError::Engine {
+            separation,
+            message,
+        }) => {
+            assert_eq!(separation, 3.0);
+            assert!(message.contains("tolerance"), "{message}");
+        }
+        other => panic!("expected an engine error, got {other:?}"),
     }
 }
