@@ -16,6 +16,7 @@ use surfgrav_potentials::tolerance::FINITE_DIFFERENCE_REL;
 use surfgrav_potentials::{
     Ellipsoid, PointMass, Potential, Region, Sphere, Spheroid, UniformDisk, Vec3,
 };
+use surfgrav_quadrature::{GaussLegendre, Rule1D};
 
 /// What the suite needs to know about a body beyond the trait.
 struct Case<'a> {
@@ -245,10 +246,10 @@ fn run_suite(case: &Case) {
 /// ∮ a·n dS over an origin-centred sphere: Gauss–Legendre in cos θ (the field is analytic on the
 /// sphere) times the trapezoid rule in φ (periodic).
 fn sphere_flux(body: &dyn Potential, radius: f64) -> f64 {
-    let (nodes, weights) = gauss_legendre(48);
+    let rule = GaussLegendre::standard(48).expect("a valid order");
     let n_phi = 96;
     let mut flux = 0.0;
-    for (&mu, &w) in nodes.iter().zip(&weights) {
+    for (&mu, &w) in rule.nodes().iter().zip(rule.weights()) {
         let s = (1.0 - mu * mu).sqrt();
         for k in 0..n_phi {
             let phi = 2.0 * PI * k as f64 / n_phi as f64;
@@ -257,37 +258,6 @@ fn sphere_flux(body: &dyn Potential, radius: f64) -> f64 {
         }
     }
     flux * (2.0 * PI / n_phi as f64) * radius * radius
-}
-
-/// Legendre P_n and its derivative at x by the three-term recurrence.
-fn legendre(n: usize, x: f64) -> (f64, f64) {
-    let (mut p0, mut p1) = (1.0, x);
-    for k in 2..=n {
-        let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-        p0 = p1;
-        p1 = p2;
-    }
-    (p1, n as f64 * (x * p1 - p0) / (x * x - 1.0))
-}
-
-/// Gauss–Legendre on [−1, 1] by Newton from Tricomi-like guesses (small n, test use only; the
-/// quadrature crate's rules are tested against mpmath values).
-fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
-    (0..n)
-        .map(|i| {
-            let mut x = (PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-            for _ in 0..50 {
-                let (p, dp) = legendre(n, x);
-                let dx = p / dp;
-                x -= dx;
-                if dx.abs() < 1e-16 {
-                    break;
-                }
-            }
-            let (_, dp) = legendre(n, x);
-            (x, 2.0 / ((1.0 - x * x) * dp * dp))
-        })
-        .unzip()
 }
 
 fn ellipsoid_inertia(m: f64, [a, b, c]: [f64; 3]) -> [f64; 3] {

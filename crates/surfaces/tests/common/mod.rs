@@ -1,13 +1,14 @@
 //! Test helpers: small quadrature rules, a deterministic random generator, and references
 //! computed independently of the node tables.
 //!
-//! The Gauss–Legendre rule is local on purpose (this crate does not depend on
-//! `surfgrav-quadrature`); it is tested here against exact polynomial integrals.
+//! Gauss–Legendre comes from `surfgrav-quadrature`, whose nodes and weights are tested against
+//! mpmath there.
 
 #![allow(dead_code)]
 
 use nalgebra::{Rotation3, Vector3};
 use std::f64::consts::PI;
+use surfgrav_quadrature::{GaussLegendre, Rule1D};
 use surfgrav_surfaces::{Interval, Rule1d};
 
 /// The workspace tolerance policy.
@@ -30,43 +31,12 @@ impl OwnedRule {
     }
 }
 
-/// Gauss–Legendre on [-1, 1] by Newton's method on P_n from Tricomi-like initial guesses.
+/// Gauss–Legendre on [-1, 1], from the quadrature crate (tested there against mpmath).
 pub fn gauss_legendre(n: usize) -> OwnedRule {
-    assert!(n >= 1);
-    let mut nodes = vec![0.0; n];
-    let mut weights = vec![0.0; n];
-    let nf = n as f64;
-    for i in 0..n.div_ceil(2) {
-        let mut x = (PI * (i as f64 + 0.75) / (nf + 0.5)).cos();
-        let mut derivative = 1.0;
-        for _ in 0..100 {
-            let (mut p0, mut p1) = (1.0, x);
-            for k in 2..=n {
-                let kf = k as f64;
-                let p2 = ((2.0 * kf - 1.0) * x * p1 - (kf - 1.0) * p0) / kf;
-                p0 = p1;
-                p1 = p2;
-            }
-            // p1 = P_n(x), p0 = P_{n-1}(x)
-            derivative = nf * (x * p1 - p0) / (x * x - 1.0);
-            let dx = p1 / derivative;
-            x -= dx;
-            if dx.abs() <= 1e-16 {
-                break;
-            }
-        }
-        let w = 2.0 / ((1.0 - x * x) * derivative * derivative);
-        nodes[i] = -x;
-        nodes[n - 1 - i] = x;
-        weights[i] = w;
-        weights[n - 1 - i] = w;
-    }
-    if n % 2 == 1 {
-        nodes[n / 2] = 0.0;
-    }
+    let rule = GaussLegendre::standard(n).expect("a valid order");
     OwnedRule {
-        nodes,
-        weights,
+        nodes: rule.nodes().to_vec(),
+        weights: rule.weights().to_vec(),
         interval: Interval::SYMMETRIC_UNIT,
     }
 }
