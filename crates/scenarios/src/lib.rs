@@ -4,4 +4,5 @@
 //! [`spec`].
 
 pub mod cli;
+pub mod plot;
 pub mod spec;
