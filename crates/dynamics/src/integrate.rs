@@ -19,22 +19,35 @@
 //!
 //!   All compositions are symmetric, hence symplectic and time reversible. Every order is measured
 //!   by a test (errors at two step sizes on a Kepler orbit of eccentricity 0.5).
-//! - [`Adaptive`]: the embedded Dormand–Prince 5(4) pair (Dormand & Prince 1980; local
-//!   extrapolation, FSAL) with the error norm
-//!   $\mathrm{err} = \big(\tfrac1{12}\sum_i (e_i / (\mathrm{atol} + \mathrm{rtol}\max(|y_{0,i}|,|y_{1,i}|)))^2\big)^{1/2}$
-//!   over the 12 components of both positions and velocities, and the step update
-//!   $h \leftarrow h \min(5, \max(0.2, 0.9\,\mathrm{err}^{-1/5}))$ (no growth after a rejection).
-//!   A step below `min_step` is a typed error carrying the time. (DOP853 remains to be added.)
+//! - [`Adaptive`] with an [`EmbeddedPair`]: Dormand–Prince 5(4) (Dormand & Prince 1980) or
+//!   DOP853 (Hairer, Nørsett & Wanner), both with local extrapolation and FSAL. The error of a
+//!   step is measured component-wise against
+//!   $\mathrm{sc}_i = \mathrm{atol} + \mathrm{rtol}\max(|y_{0,i}|,|y_{1,i}|)$ over the 12
+//!   components of both positions and velocities: DP5(4) uses the root mean square
+//!   $\mathrm{err} = \big(\tfrac1{12}\sum_i (e_i/\mathrm{sc}_i)^2\big)^{1/2}$, DOP853 combines its
+//!   5th- and 3rd-order estimates as $\mathrm{err} = \|e_5\|^2/\sqrt{\|e_5\|^2 + 0.01\|e_3\|^2}$
+//!   (both norms root-mean-square scaled). A step is accepted when err ≤ 1, and the next step is
+//!   $h \leftarrow h\,\min(f_{\max}, \max(f_{\min}, 0.9\,\mathrm{err}^{-1/(q+1)}))$ with q = 4,
+//!   $[f_{\min}, f_{\max}] = [0.2, 5]$ for DP5(4) and q = 7, [1/3, 6] for DOP853 (no growth
+//!   after a rejection). A step below `min_step` is a typed error carrying the time; so is a
+//!   non-finite error estimate or state.
 //!
 //! Dense output: every integrator reports [`Sample`]s carrying the accelerations, so the quintic
-//! Hermite interpolant of [`crate::interpolate`] gives positions and velocities between samples.
+//! Hermite interpolant of [`crate::interpolate`] gives positions and velocities between samples
+//! (local error $O(h^6)$). [`Integrator::integrate_with_output`] gives evenly spaced states;
+//! DOP853 computes them from its own continuous extension of order 7 (local error $O(h^8)$,
+//! three more force evaluations in each step that contains an output time).
 //!
 //! Contact: when the model has a contact distance and a step would end at or below it (or a stage
 //! lands in overlap), the step length from the last accepted sample is bisected until the contact
 //! time is found to round-off; the run stops with [`Termination::Contact`].
 
+use crate::interpolate::{state_between, EvenOutput};
 use crate::model::{InteractionError, InteractionModel};
 use crate::state::{Sample, TwoBodyState};
+use crate::tableau::{
+    ErrorWeights, Tableau, DOP853, DOP853_D, DOP853_DENSE_A, DORMAND_PRINCE_54, MAX_STAGES,
+};
 use surfgrav_potentials::{Pose, Real, Vec3};
 use thiserror::Error;
 
@@ -146,7 +159,7 @@ pub struct RunSummary {
 
 /// An integrator of the two-body translational motion. Object safe.
 pub trait Integrator {
-    /// Short name (`rk4`, `leapfrog`, `dopri5`, ...).
+    /// Short name (`rk4`, `leapfrog`, `yoshida4`, `yoshida6`, `yoshida8`, `dopri5`, `dop853`).
     fn name(&self) -> &'static str;
 
     /// Integrates from `initial` at `t_start` to `t_end` (> `t_start`). `observer` receives the
@@ -160,6 +173,35 @@ pub trait Integrator {
         t_end: Real,
         observer: &mut dyn FnMut(&Sample),
     ) -> Result<RunSummary, DynamicsError>;
+
+    /// As [`Integrator::integrate`], and also calls `emit(time, state)` at the evenly spaced
+    /// times $t_{\mathrm{start}} + k\,\Delta$ (`interval` Δ positive and finite; times computed
+    /// from k, no accumulated round-off) up to the last sample, in order, each before the sample
+    /// that ends its step reaches `observer`. The states come from the method's dense output: the
+    /// quintic Hermite interpolant of the samples ([`crate::interpolate::EvenOutput`]) by default;
+    /// DOP853 uses its own continuous extension of order 7. After a contact, the last output
+    /// time is at or before the contact time.
+    #[allow(clippy::too_many_arguments)]
+    fn integrate_with_output(
+        &mut self,
+        model: &dyn InteractionModel,
+        initial: &TwoBodyState,
+        t_start: Real,
+        t_end: Real,
+        interval: Real,
+        observer: &mut dyn FnMut(&Sample),
+        emit: &mut dyn FnMut(Real, &TwoBodyState),
+    ) -> Result<RunSummary, DynamicsError> {
+        let mut output = EvenOutput::new(interval).ok_or(DynamicsError::InvalidParameter {
+            name: "interval",
+            requirement: "positive and finite",
+            value: interval,
+        })?;
+        self.integrate(model, initial, t_start, t_end, &mut |sample| {
+            output.observe(sample, emit);
+            observer(sample);
+        })
+    }
 }
 
 /// Positions and velocities of both bodies: $(\mathbf R_A, \mathbf R_B, \dot{\mathbf R}_A, \dot{\mathbf R}_B)$.
@@ -497,14 +539,14 @@ impl FixedScheme {
         }
     }
 
-    /// Short name.
+    /// Short name (the same as [`crate::IntegratorKind`]'s: `TripleJump8` is `yoshida8`).
     pub fn name(self) -> &'static str {
         match self {
             FixedScheme::RungeKutta4 => "rk4",
             FixedScheme::Leapfrog => "leapfrog",
             FixedScheme::Yoshida4 => "yoshida4",
             FixedScheme::Yoshida6 => "yoshida6",
-            FixedScheme::TripleJump8 => "triple-jump8",
+            FixedScheme::TripleJump8 => "yoshida8",
         }
     }
 }
@@ -717,9 +759,51 @@ impl Integrator for FixedStep {
     }
 }
 
-/// Adaptive embedded Dormand–Prince 5(4) integrator with step-size control.
+/// The embedded Runge–Kutta pairs of [`Adaptive`] (tableaux and error estimators in the private
+/// `tableau` module's documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum EmbeddedPair {
+    /// Dormand–Prince 5(4): order 5, 6 force evaluations per step; dense output by the quintic
+    /// Hermite interpolant of the samples.
+    DormandPrince54,
+    /// DOP853 (Hairer, Nørsett & Wanner): order 8, 12 force evaluations per step, error from
+    /// combined 5th- and 3rd-order estimators; its own dense output of order 7 costs 3 more
+    /// evaluations in each step that contains an output time.
+    Dop853,
+}
+
+impl EmbeddedPair {
+    /// Short name (`dopri5`, `dop853`).
+    pub fn name(self) -> &'static str {
+        match self {
+            EmbeddedPair::DormandPrince54 => "dopri5",
+            EmbeddedPair::Dop853 => "dop853",
+        }
+    }
+
+    /// Order of the propagated solution.
+    pub fn order(self) -> u32 {
+        match self {
+            EmbeddedPair::DormandPrince54 => 5,
+            EmbeddedPair::Dop853 => 8,
+        }
+    }
+
+    fn tableau(self) -> &'static Tableau {
+        match self {
+            EmbeddedPair::DormandPrince54 => &DORMAND_PRINCE_54,
+            EmbeddedPair::Dop853 => &DOP853,
+        }
+    }
+}
+
+/// Adaptive embedded Runge–Kutta integrator with step-size control: Dormand–Prince 5(4)
+/// ([`Adaptive::new`]) or DOP853 ([`Adaptive::dop853`]); both share the step control, the step
+/// floor, the contact handling and the evenly spaced output.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Adaptive {
+    pair: EmbeddedPair,
     relative_tolerance: Real,
     absolute_tolerance: Real,
     min_step: Real,
@@ -728,54 +812,28 @@ pub struct Adaptive {
     max_steps: usize,
 }
 
-// Dormand–Prince 5(4) tableau: nodes, stage coefficients, 5th-order weights (= last stage row,
-// FSAL) and the difference between the 5th- and 4th-order weights.
-#[cfg(test)]
-const DP_C: [Real; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
-const DP_A: [[Real; 6]; 7] = [
-    [0.0; 6],
-    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
-    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-    [
-        19372.0 / 6561.0,
-        -25360.0 / 2187.0,
-        64448.0 / 6561.0,
-        -212.0 / 729.0,
-        0.0,
-        0.0,
-    ],
-    [
-        9017.0 / 3168.0,
-        -355.0 / 33.0,
-        46732.0 / 5247.0,
-        49.0 / 176.0,
-        -5103.0 / 18656.0,
-        0.0,
-    ],
-    [
-        35.0 / 384.0,
-        0.0,
-        500.0 / 1113.0,
-        125.0 / 192.0,
-        -2187.0 / 6784.0,
-        11.0 / 84.0,
-    ],
-];
-const DP_B4: [Real; 7] = [
-    5179.0 / 57600.0,
-    0.0,
-    7571.0 / 16695.0,
-    393.0 / 640.0,
-    -92097.0 / 339200.0,
-    187.0 / 2100.0,
-    1.0 / 40.0,
-];
+/// The stage derivatives $\mathbf k_i$ of one step: (velocity of A, velocity of B, acceleration
+/// of A, acceleration of B) per stage.
+type Stages = [[Vec3; 4]; MAX_STAGES];
+
+/// $\mathbf y + h\sum_j a_j\mathbf k_j$.
+fn combine(y: &[Vec3; 4], row: &[Real], k: &Stages, h: Real) -> [Vec3; 4] {
+    let mut out = *y;
+    for (kj, &a) in k.iter().zip(row) {
+        if a != 0.0 {
+            let c = a * h;
+            for n in 0..4 {
+                out[n] += kj[n] * c;
+            }
+        }
+    }
+    out
+}
 
 impl Adaptive {
     /// Dormand–Prince 5(4) with relative and absolute tolerances (positive, finite). Defaults:
     /// minimum step 1e-12 × the span of the run, maximum step the span, initial step chosen
-    /// automatically, at most 10⁸ steps.
+    /// automatically, at most 10⁸ steps. [`Adaptive::with_pair`] switches the pair.
     pub fn new(relative_tolerance: Real, absolute_tolerance: Real) -> Result<Self, DynamicsError> {
         let positive = |name, value: Real| {
             if value.is_finite() && value > 0.0 {
@@ -789,6 +847,7 @@ impl Adaptive {
             }
         };
         Ok(Self {
+            pair: EmbeddedPair::DormandPrince54,
             relative_tolerance: positive("relative_tolerance", relative_tolerance)?,
             absolute_tolerance: positive("absolute_tolerance", absolute_tolerance)?,
             min_step: 0.0,
@@ -796,6 +855,26 @@ impl Adaptive {
             initial_step: None,
             max_steps: 100_000_000,
         })
+    }
+
+    /// DOP853 with relative and absolute tolerances (positive, finite); other defaults as
+    /// [`Adaptive::new`].
+    pub fn dop853(
+        relative_tolerance: Real,
+        absolute_tolerance: Real,
+    ) -> Result<Self, DynamicsError> {
+        Ok(Self::new(relative_tolerance, absolute_tolerance)?.with_pair(EmbeddedPair::Dop853))
+    }
+
+    /// Uses `pair`.
+    pub fn with_pair(mut self, pair: EmbeddedPair) -> Self {
+        self.pair = pair;
+        self
+    }
+
+    /// The embedded pair.
+    pub fn pair(&self) -> EmbeddedPair {
+        self.pair
     }
 
     /// Sets the step floor (non-negative, finite; 0 means 1e-12 × the span).
@@ -843,48 +922,118 @@ impl Adaptive {
         self
     }
 
-    /// One Dormand–Prince step of length `h`; returns the 5th-order sample and the error norm.
-    fn dp_step(
+    /// One step of length `h` of the pair; returns the propagated sample and the error norm, and
+    /// leaves the stage derivatives in `k` (for the dense output).
+    fn rk_step(
         &self,
         dynamics: &mut Dynamics<'_>,
         from: &Sample,
         h: Real,
+        k: &mut Stages,
     ) -> Result<(Sample, Real), InteractionError> {
+        let tableau = self.pair.tableau();
         let y = Phase::of(&from.state).0;
-        // k[i] = (velocity of A, velocity of B, acceleration of A, acceleration of B) at stage i.
-        let mut k = [[Vec3::zeros(); 4]; 7];
         k[0] = [y[2], y[3], from.acceleration_a, from.acceleration_b];
         let mut stage = y;
-        for i in 1..7 {
-            stage = y;
-            for (j, kj) in k.iter().enumerate().take(i) {
-                let c = DP_A[i][j] * h;
-                if c != 0.0 {
-                    for n in 0..4 {
-                        stage[n] += kj[n] * c;
+        for (i, row) in tableau.a.iter().enumerate() {
+            stage = combine(&y, row, k, h);
+            let acc = dynamics.accelerations(&stage[0], &stage[1])?;
+            k[i + 1] = [stage[2], stage[3], acc.0, acc.1];
+        }
+        // The last stage is the propagated solution (FSAL); its derivative is the end
+        // acceleration.
+        let end = stage;
+        let error = self.error_norm(tableau, &y, &end, k, h);
+        let last = tableau.stages() - 1;
+        let sample = dynamics.sample(from.time + h, Phase(end), (k[last][2], k[last][3]));
+        Ok((sample, error))
+    }
+
+    /// The scaled error norm of a step (see the module documentation).
+    fn error_norm(
+        &self,
+        tableau: &Tableau,
+        y0: &[Vec3; 4],
+        y1: &[Vec3; 4],
+        k: &Stages,
+        h: Real,
+    ) -> Real {
+        let stages = tableau.stages();
+        let b = tableau.b();
+        let weight = |w: &[Real], i: usize| w.get(i).copied().unwrap_or(0.0);
+        // Σ over the 12 components of (h Σ_i w_i k_i / scale)².
+        let squares = |w: &dyn Fn(usize) -> Real| -> Real {
+            let mut sum = 0.0;
+            for n in 0..4 {
+                let mut e = Vec3::zeros();
+                for (i, ki) in k.iter().enumerate().take(stages) {
+                    let c = w(i);
+                    if c != 0.0 {
+                        e += ki[n] * c;
                     }
                 }
+                for c in 0..3 {
+                    let scale = self.absolute_tolerance
+                        + self.relative_tolerance * y0[n][c].abs().max(y1[n][c].abs());
+                    sum += (e[c] * h / scale).powi(2);
+                }
             }
+            sum
+        };
+        match tableau.error {
+            ErrorWeights::Lower(lower) => {
+                (squares(&|i| weight(b, i) - weight(lower, i)) / 12.0).sqrt()
+            }
+            ErrorWeights::Combined { fifth, third } => {
+                let e5 = squares(&|i| weight(fifth, i));
+                let e3 = squares(&|i| weight(b, i) - weight(third, i));
+                let denominator = e5 + 0.01 * e3;
+                if denominator == 0.0 {
+                    0.0
+                } else {
+                    // NaN or infinity propagate to the caller's finiteness check.
+                    e5 / (12.0 * denominator).sqrt()
+                }
+            }
+        }
+    }
+
+    /// DOP853's continuous extension over the accepted step `from` → `to` of length `h` whose
+    /// stages are in `k` (three more force evaluations, stored in `k[13..16]`).
+    fn dense_step(
+        &self,
+        dynamics: &mut Dynamics<'_>,
+        from: &Sample,
+        to: &Sample,
+        h: Real,
+        k: &mut Stages,
+    ) -> Result<DenseStep, InteractionError> {
+        let y0 = Phase::of(&from.state).0;
+        let y1 = Phase::of(&to.state).0;
+        let first = DOP853.stages();
+        for (m, row) in DOP853_DENSE_A.iter().enumerate() {
+            let stage = combine(&y0, row, k, h);
             let acc = dynamics.accelerations(&stage[0], &stage[1])?;
-            k[i] = [stage[2], stage[3], acc.0, acc.1];
+            k[first + m] = [stage[2], stage[3], acc.0, acc.1];
         }
-        // Stage 7 is the 5th-order solution (FSAL); its derivative is the end acceleration.
-        let end = stage;
-        let mut sum = 0.0;
+        let mut coefficients = [[Vec3::zeros(); 4]; 7];
+        let zero = [Vec3::zeros(); 4];
         for n in 0..4 {
-            let mut e = Vec3::zeros();
-            for (i, ki) in k.iter().enumerate() {
-                e += ki[n] * ((DP_A[6].get(i).copied().unwrap_or(0.0) - DP_B4[i]) * h);
-            }
-            for c in 0..3 {
-                let scale = self.absolute_tolerance
-                    + self.relative_tolerance * y[n][c].abs().max(end[n][c].abs());
-                sum += (e[c] / scale).powi(2);
-            }
+            let delta = y1[n] - y0[n];
+            let beta = k[0][n] * h - delta;
+            coefficients[0][n] = delta;
+            coefficients[1][n] = beta;
+            coefficients[2][n] = delta - k[first - 1][n] * h - beta;
         }
-        let error = (sum / 12.0).sqrt();
-        let sample = dynamics.sample(from.time + h, Phase(end), (k[6][2], k[6][3]));
-        Ok((sample, error))
+        for (r, row) in DOP853_D.iter().enumerate() {
+            coefficients[3 + r] = combine(&zero, row, k, h);
+        }
+        Ok(DenseStep {
+            start: from.time,
+            step: h,
+            y0,
+            coefficients,
+        })
     }
 
     fn first_step(&self, from: &Sample, span: Real) -> Real {
@@ -908,20 +1057,51 @@ impl Adaptive {
         };
         h.min(span).min(self.max_step)
     }
-}
 
-impl Integrator for Adaptive {
-    fn name(&self) -> &'static str {
-        "dopri5"
+    /// Emits every output time in (`from.time`, `to.time`] of an accepted step: DOP853 by its
+    /// own dense output (computed once per step, only when an output time falls inside), the
+    /// other pair, or DOP853 if a dense stage fails, by the quintic Hermite interpolant.
+    #[allow(clippy::too_many_arguments)]
+    fn emit_step(
+        &self,
+        dynamics: &mut Dynamics<'_>,
+        from: &Sample,
+        to: &Sample,
+        h: Real,
+        k: &mut Stages,
+        clock: &mut OutputClock,
+        emit: &mut dyn FnMut(Real, &TwoBodyState),
+    ) {
+        let mut dense: Option<Option<DenseStep>> = None;
+        while let Some(t) = clock.next_until(to.time) {
+            let state = if t == to.time {
+                to.state
+            } else if t <= from.time {
+                from.state
+            } else if self.pair == EmbeddedPair::Dop853 {
+                let step = dense
+                    .get_or_insert_with(|| self.dense_step(dynamics, from, to, h, k).ok())
+                    .as_ref();
+                match step {
+                    Some(step) => step.at(t).into_state(&from.state),
+                    None => state_between(from, to, t),
+                }
+            } else {
+                state_between(from, to, t)
+            };
+            emit(t, &state);
+        }
     }
 
-    fn integrate(
-        &mut self,
+    /// The adaptive loop shared by both pairs; `output` asks for evenly spaced states.
+    fn run(
+        &self,
         model: &dyn InteractionModel,
         initial: &TwoBodyState,
         t_start: Real,
         t_end: Real,
         observer: &mut dyn FnMut(&Sample),
+        mut output: EvenStates<'_>,
     ) -> Result<RunSummary, DynamicsError> {
         check_span(t_start, t_end)?;
         let span = t_end - t_start;
@@ -930,9 +1110,18 @@ impl Integrator for Adaptive {
         } else {
             1e-12 * span
         };
+        let tableau = self.pair.tableau();
+        let exponent = -1.0 / Real::from(tableau.error_order + 1);
+        let (shrink_limit, grow_limit) = tableau.factor_range;
         let mut dynamics = Dynamics::new(model, *initial);
         let mut current = initial_sample(&mut dynamics, initial, t_start)?;
+        if let Some((clock, emit)) = output.as_mut() {
+            while let Some(t) = clock.next_until(current.time) {
+                emit(t, &current.state);
+            }
+        }
         observer(&current);
+        let mut k: Stages = [[Vec3::zeros(); 4]; MAX_STAGES];
         let mut h = self.first_step(&current, span);
         let (mut steps, mut rejected) = (0usize, 0usize);
         let mut last_rejected = false;
@@ -953,7 +1142,7 @@ impl Integrator for Adaptive {
                     min_step,
                 });
             }
-            let result = self.dp_step(&mut dynamics, &current, h_try);
+            let result = self.rk_step(&mut dynamics, &current, h_try, &mut k);
             let (sample, error) = match result {
                 Ok((s, e)) => (Ok(s), e),
                 Err(err) => (Err(err), 0.0),
@@ -964,13 +1153,16 @@ impl Integrator for Adaptive {
             if error > 1.0 {
                 rejected += 1;
                 last_rejected = true;
-                h = h_try * (0.9 * error.powf(-0.2)).max(0.2);
+                h = h_try * (0.9 * error.powf(exponent)).max(shrink_limit);
                 continue;
             }
             match classify(&dynamics, sample, current.time)? {
                 Trial::Clear(mut next) => {
                     if last {
                         next.time = t_end;
+                    }
+                    if let Some((clock, emit)) = output.as_mut() {
+                        self.emit_step(&mut dynamics, &current, &next, h_try, &mut k, clock, *emit);
                     }
                     current = next;
                     steps += 1;
@@ -979,18 +1171,19 @@ impl Integrator for Adaptive {
                         break;
                     }
                     let grow = if error > 0.0 {
-                        (0.9 * error.powf(-0.2)).clamp(0.2, 5.0)
+                        (0.9 * error.powf(exponent)).clamp(shrink_limit, grow_limit)
                     } else {
-                        5.0
+                        grow_limit
                     };
                     let grow = if last_rejected { grow.min(1.0) } else { grow };
                     last_rejected = false;
                     h = (h_try * grow).min(self.max_step);
                 }
                 Trial::Touching => {
-                    let this = &*self;
+                    let mut scratch: Stages = [[Vec3::zeros(); 4]; MAX_STAGES];
                     let mut step = |d: &mut Dynamics<'_>, s: &Sample, h: Real| {
-                        this.dp_step(d, s, h).map(|(sample, _)| sample)
+                        self.rk_step(d, s, h, &mut scratch)
+                            .map(|(sample, _)| sample)
                     };
                     let Some(event) = locate_contact(&mut dynamics, &current, h_try, &mut step)?
                     else {
@@ -1000,6 +1193,11 @@ impl Integrator for Adaptive {
                         h = 0.25 * h_try;
                         continue;
                     };
+                    if let Some((clock, emit)) = output.as_mut() {
+                        while let Some(t) = clock.next_until(event.sample.time) {
+                            emit(t, &state_between(&current, &event.sample, t));
+                        }
+                    }
                     observer(&event.sample);
                     return Ok(RunSummary {
                         last: event.sample,
@@ -1021,28 +1219,107 @@ impl Integrator for Adaptive {
     }
 }
 
+/// DOP853's continuous extension over one step (module documentation): $\mathbf y_0$, then
+/// $\Delta$, $\beta$, $\Delta - h\mathbf k_{13} - \beta$, $\mathbf d_4, \dots, \mathbf d_7$.
+struct DenseStep {
+    start: Real,
+    step: Real,
+    y0: [Vec3; 4],
+    coefficients: [[Vec3; 4]; 7],
+}
+
+impl DenseStep {
+    fn at(&self, time: Real) -> Phase {
+        let s = ((time - self.start) / self.step).clamp(0.0, 1.0);
+        let s1 = 1.0 - s;
+        let [delta, beta, third, d4, d5, d6, d7] = &self.coefficients;
+        let mut out = self.y0;
+        for n in 0..4 {
+            let inner = d4[n] + (d5[n] + (d6[n] + d7[n] * s) * s1) * s;
+            out[n] += (delta[n] + (beta[n] + (third[n] + inner * s1) * s) * s1) * s;
+        }
+        Phase(out)
+    }
+}
+
+/// Where evenly spaced states go, if anywhere: the output times and the receiver.
+type EvenStates<'a> = Option<(&'a mut OutputClock, &'a mut dyn FnMut(Real, &TwoBodyState))>;
+
+/// Output times $t_0 + k\Delta$ (computed from $k$, no accumulated round-off).
+#[derive(Debug, Clone)]
+struct OutputClock {
+    start: Real,
+    interval: Real,
+    emitted: u64,
+}
+
+impl OutputClock {
+    fn new(start: Real, interval: Real) -> Result<Self, DynamicsError> {
+        if !(interval.is_finite() && interval > 0.0) {
+            return Err(DynamicsError::InvalidParameter {
+                name: "interval",
+                requirement: "positive and finite",
+                value: interval,
+            });
+        }
+        Ok(Self {
+            start,
+            interval,
+            emitted: 0,
+        })
+    }
+
+    /// The next output time if it is at most `until` (and counts it as emitted).
+    fn next_until(&mut self, until: Real) -> Option<Real> {
+        let t = self.start + self.emitted as Real * self.interval;
+        (t <= until).then(|| {
+            self.emitted += 1;
+            t
+        })
+    }
+}
+
+impl Integrator for Adaptive {
+    fn name(&self) -> &'static str {
+        self.pair.name()
+    }
+
+    fn integrate(
+        &mut self,
+        model: &dyn InteractionModel,
+        initial: &TwoBodyState,
+        t_start: Real,
+        t_end: Real,
+        observer: &mut dyn FnMut(&Sample),
+    ) -> Result<RunSummary, DynamicsError> {
+        self.run(model, initial, t_start, t_end, observer, None)
+    }
+
+    fn integrate_with_output(
+        &mut self,
+        model: &dyn InteractionModel,
+        initial: &TwoBodyState,
+        t_start: Real,
+        t_end: Real,
+        interval: Real,
+        observer: &mut dyn FnMut(&Sample),
+        emit: &mut dyn FnMut(Real, &TwoBodyState),
+    ) -> Result<RunSummary, DynamicsError> {
+        let mut clock = OutputClock::new(t_start, interval)?;
+        self.run(
+            model,
+            initial,
+            t_start,
+            t_end,
+            observer,
+            Some((&mut clock, emit)),
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Consistency of the tableau: each stage row sums to its node, the weights sum to 1, and
-    /// the weights satisfy the order conditions up to order 4 (both) and 5 (the propagated one).
-    #[test]
-    fn dormand_prince_tableau_is_consistent() {
-        for (row, c) in DP_A.iter().zip(DP_C) {
-            assert!((row.iter().sum::<Real>() - c).abs() < 1e-15);
-        }
-        let b5: Vec<Real> = DP_A[6].iter().copied().chain([0.0]).collect();
-        for b in [&b5[..], &DP_B4[..]] {
-            assert!((b.iter().sum::<Real>() - 1.0).abs() < 1e-15);
-            for q in 1..4 {
-                let moment: Real = b.iter().zip(DP_C).map(|(b, c)| b * c.powi(q)).sum();
-                assert!((moment - 1.0 / (q as Real + 1.0)).abs() < 1e-15, "q = {q}");
-            }
-        }
-        let moment: Real = b5.iter().zip(DP_C).map(|(b, c)| b * c.powi(4)).sum();
-        assert!((moment - 0.2).abs() < 1e-15);
-    }
 
     /// Necessary order conditions of a symmetric composition of order p: the odd power sums
     /// $\sum_i w_i^k$ vanish for k = 3, 5, ..., p − 1 (the error terms of the leapfrog

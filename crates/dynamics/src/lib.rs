@@ -8,13 +8,15 @@
 //! - [`model`]: the [`InteractionModel`] trait (force on A, mutual energy, contact distance) with
 //!   point masses and closure-defined central pairs.
 //! - [`integrate`]: the [`Integrator`] trait; fixed-step RK4, leapfrog and symplectic
-//!   compositions of order 4, 6 and 8 ([`FixedStep`]); adaptive Dormand–Prince 5(4)
-//!   ([`Adaptive`]); contact events and typed failures.
+//!   compositions of order 4, 6 and 8 ([`FixedStep`]); adaptive Dormand–Prince 5(4) and DOP853
+//!   ([`Adaptive`], [`EmbeddedPair`]); contact events and typed failures.
 //! - [`interpolant`]: a central pair tabulated once as a piecewise Chebyshev interpolant of
 //!   $V(r)$, forces from its exact derivative.
 //! - [`interpolate`]: dense output between samples (quintic Hermite).
 //! - [`diagnostics`]: energy, angular momentum and the statistics of their per-step changes.
 //! - [`orbit`]: apsides, radial and azimuthal periods, precession of the relative orbit.
+//! - [`choice`]: integrators by name ([`IntegratorKind`]: `rk4`, `leapfrog`, `yoshida4`,
+//!   `yoshida6`, `yoshida8`, `dopri5`, `dop853`), as the command line chooses them.
 //! - [`run`]: integrate and gather every diagnostic in one call.
 //! - [`tolerance`]: the accuracy requirements the tests hold this crate to.
 //!
@@ -45,6 +47,7 @@
 //! assert!((report.minimum_separation.unwrap() - 2.72222).abs() < 1e-5);
 //! ```
 
+pub mod choice;
 pub mod diagnostics;
 pub mod engine_model;
 pub mod integrate;
@@ -54,8 +57,10 @@ pub mod model;
 pub mod orbit;
 pub mod run;
 pub mod state;
+mod tableau;
 pub mod tolerance;
 
+pub use choice::{IntegratorChoiceError, IntegratorKind};
 pub use diagnostics::{
     angular_momentum, kinetic_energy, total_energy, CompensatedSum, ConservationMonitor,
     ConservationStatistics, SeriesAccumulator, SeriesStatistics,
@@ -64,8 +69,8 @@ pub use engine_model::{
     EngineModel, EngineModelError, SceneModel, SceneSettings, TableReport, ALIGNMENT_SINE,
 };
 pub use integrate::{
-    Adaptive, ContactEvent, DynamicsError, FixedScheme, FixedStep, Integrator, RunSummary,
-    Termination,
+    Adaptive, ContactEvent, DynamicsError, EmbeddedPair, FixedScheme, FixedStep, Integrator,
+    RunSummary, Termination,
 };
 pub use interpolant::{reachable_separations, InterpolantError, InterpolatedCentralPair};
 pub use model::{CentralPair, InteractionError, InteractionModel, PointMasses};
