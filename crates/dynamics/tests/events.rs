@@ -1,8 +1,8 @@
 //! Contact events and failed runs: typed outcomes carrying the time.
 
 use surfgrav_dynamics::{
-    Adaptive, BodyState, CentralPair, DynamicsError, FixedScheme, FixedStep, Integrator,
-    InteractionError, PointMasses, Termination, TwoBodyState,
+    Adaptive, BodyState, CentralPair, DynamicsError, EmbeddedPair, FixedScheme, FixedStep,
+    Integrator, InteractionError, PointMasses, Termination, TwoBodyState,
 };
 use surfgrav_potentials::{Real, Vec3};
 
@@ -36,6 +36,7 @@ fn contact_is_located_in_time_and_place() {
             1e-8,
         ),
         (Box::new(Adaptive::new(1e-12, 1e-14).unwrap()), 1e-10),
+        (Box::new(Adaptive::dop853(1e-12, 1e-14).unwrap()), 1e-10),
     ] {
         let mut last_seen = 0.0;
         let summary = integrator
@@ -86,24 +87,27 @@ fn overlap_at_start_is_an_error_at_the_start_time() {
 fn step_floor_reports_the_time() {
     let model = PointMasses::new(1.0, 1.0, 1.0).unwrap();
     let collision = fall_time(3.0, 0.0, 2.0);
-    let mut integrator = Adaptive::new(1e-10, 1e-12)
-        .unwrap()
-        .with_min_step(1e-9)
-        .unwrap();
-    let error = integrator
-        .integrate(&model, &at_rest(3.0), 0.0, 10.0, &mut |_| {})
-        .unwrap_err();
-    println!("{error}");
-    let DynamicsError::StepSizeTooSmall {
-        time,
-        step,
-        min_step,
-    } = error
-    else {
-        panic!("expected a step-floor error, got {error:?}");
-    };
-    assert!(step < min_step);
-    assert!((time - collision).abs() < 1e-4, "{time} vs {collision}");
+    for pair in [EmbeddedPair::DormandPrince54, EmbeddedPair::Dop853] {
+        let mut integrator = Adaptive::new(1e-10, 1e-12)
+            .unwrap()
+            .with_pair(pair)
+            .with_min_step(1e-9)
+            .unwrap();
+        let error = integrator
+            .integrate(&model, &at_rest(3.0), 0.0, 10.0, &mut |_| {})
+            .unwrap_err();
+        println!("{}: {error}", pair.name());
+        let DynamicsError::StepSizeTooSmall {
+            time,
+            step,
+            min_step,
+        } = error
+        else {
+            panic!("expected a step-floor error, got {error:?}");
+        };
+        assert!(step < min_step);
+        assert!((time - collision).abs() < 1e-4, "{time} vs {collision}");
+    }
 }
 
 /// A force so strong the state overflows: a typed non-finite error with the time.
@@ -170,6 +174,7 @@ fn grazing_orbit_is_not_a_contact() {
             Some(4 * 200 + 1),
         ),
         (Box::new(Adaptive::new(1e-9, 1e-12).unwrap()), None),
+        (Box::new(Adaptive::dop853(1e-9, 1e-12).unwrap()), None),
     ] {
         let mut closest = Real::INFINITY;
         let summary = integrator
