@@ -1,7 +1,12 @@
 //! The `surfgrav` command line.
 //!
-//! Every command prints its result as JSON on stdout. Bad input gives one line on stderr
-//! starting with `error:`, nothing on stdout, and exit code 2 (see [`run`]).
+//! `potential` and `interact` print their result as JSON on stdout; `presets` prints a list or
+//! a scene as TOML; `run` and `report` write a folder and print what they wrote with the key
+//! numbers. Bad input gives one line on stderr starting with `error:`, nothing on stdout, no
+//! output folder, and exit code 2; a run that starts and then fails exits with code 1 (see
+//! [`run`]).
+
+use std::path::{Path, PathBuf};
 
 use clap::{Parser, Subcommand};
 use serde::Serialize;
@@ -9,6 +14,13 @@ use serde::Serialize;
 use surfgrav_potentials::{Pose, Vec3};
 use surfgrav_surfaces::interaction::{InteractionEngine, InteractionOptions};
 
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::figures;
+use crate::output;
+use crate::presets;
+use crate::scene::{IntegratorName, Scene, SceneFile};
+use crate::simulate::{self, RunError, RunRecord};
 use crate::spec::{parse_positive, parse_vector, BodySpec};
 
 /// Exact gravitational interaction of extended rigid bodies.
@@ -96,11 +108,100 @@ pub enum Command {
         )]
         g: String,
     },
+    /// List the built-in scenes, or print one as TOML to start a scene file from.
+    Presets {
+        /// Print this preset's scene file (TOML) instead of the list.
+        #[arg(long, value_name = "NAME")]
+        show: Option<String>,
+    },
+    /// Integrate a scene and write trajectory.csv, summary.json and the paper's Figs. 2–4.
+    ///
+    /// SCENE is a preset name (see `surfgrav presets`) or a TOML scene file. The output folder
+    /// appears whole at the end (written under a temporary name, then renamed); a failed or
+    /// interrupted run leaves no folder with the final name. A progress bar is shown on a
+    /// terminal only (not on a pipe, not with --quiet).
+    Run {
+        /// A preset name or the path of a scene file.
+        #[arg(value_name = "PRESET|FILE")]
+        scene: String,
+        /// Output folder (must not exist, or be empty); default: a new folder named after the
+        /// scene in the working directory.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// End time (overrides the scene's t_end).
+        #[arg(long, value_name = "T", allow_hyphen_values = true)]
+        t_end: Option<String>,
+        /// Step of a fixed-step integrator (overrides integrator.step).
+        #[arg(long, value_name = "DT", allow_hyphen_values = true)]
+        dt: Option<String>,
+        /// Integrator: rk4, leapfrog, yoshida4, yoshida6, yoshida8, dopri5, dop853.
+        #[arg(long, value_name = "NAME")]
+        integrator: Option<String>,
+        /// Tolerance of an adaptive integrator (overrides integrator.tolerance).
+        #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+        tolerance: Option<String>,
+        /// No progress bar and no summary on stdout.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Run the paper's presets and write REPORT.md with the tables and figures.
+    ///
+    /// The precession table and Table 2 beside the paper's values, the limiting-case
+    /// comparison of the paper's Fig. 7 and the Maclaurin-disk remark, with every figure.
+    Report {
+        /// Output folder (must not exist, or be empty); default: a new folder `report`.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// No progress output.
+        #[arg(long)]
+        quiet: bool,
+    },
 }
 
 /// A user error: printed as one line, exit code 2.
 #[derive(Debug)]
 pub struct UserError(pub String);
+
+/// Why a command failed, with its exit code.
+#[derive(Debug)]
+pub enum CliError {
+    /// Bad input (exit code 2): nothing was written.
+    Input(String),
+    /// A run started and failed (exit code 1): nothing was written.
+    Failed(String),
+}
+
+impl CliError {
+    /// The message (one line).
+    pub fn message(&self) -> &str {
+        match self {
+            CliError::Input(m) | CliError::Failed(m) => m,
+        }
+    }
+
+    /// The process exit code.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            CliError::Input(_) => 2,
+            CliError::Failed(_) => 1,
+        }
+    }
+}
+
+impl From<UserError> for CliError {
+    fn from(e: UserError) -> Self {
+        CliError::Input(e.0)
+    }
+}
+
+impl From<RunError> for CliError {
+    fn from(e: RunError) -> Self {
+        match e {
+            RunError::Input(m) => CliError::Input(m),
+            RunError::Failed(m) => CliError::Failed(m),
+        }
+    }
+}
 
 impl<E: std::error::Error> From<E> for UserError {
     fn from(e: E) -> Self {
@@ -126,9 +227,29 @@ struct InteractOutput {
     error_estimate: f64,
 }
 
-/// Runs one parsed command, returning the JSON text to print.
-pub fn run(cli: Cli) -> Result<String, UserError> {
+/// Runs one parsed command, returning the text to print on stdout.
+pub fn run(cli: Cli) -> Result<String, CliError> {
     match cli.command {
+        Command::Presets { show } => presets_command(show.as_deref()),
+        Command::Run {
+            scene,
+            out,
+            t_end,
+            dt,
+            integrator,
+            tolerance,
+            quiet,
+        } => {
+            let overrides = Overrides::parse(t_end, dt, integrator, tolerance)?;
+            run_command(&scene, out.as_deref(), &overrides, quiet)
+        }
+        Command::Report { out, quiet } => crate::report::report_command(out.as_deref(), quiet),
+        other => Ok(field_commands(other)?),
+    }
+}
+
+fn field_commands(command: Command) -> Result<String, UserError> {
+    match command {
         Command::Potential { body, at, g } => {
             let g = parse_positive("--g", &g).map_err(UserError)?;
             let spec: BodySpec = body.parse()?;
@@ -197,5 +318,227 @@ pub fn run(cli: Cli) -> Result<String, UserError> {
             };
             Ok(serde_json::to_string(&out).map_err(|e| UserError(e.to_string()))?)
         }
+        Command::Presets { .. } | Command::Run { .. } | Command::Report { .. } => {
+            Err(UserError("internal: not a field command".into()))
+        }
     }
+}
+
+fn presets_command(show: Option<&str>) -> Result<String, CliError> {
+    match show {
+        Some(name) => presets::find(name)
+            .map(|p| p.toml.trim_end().to_string())
+            .ok_or_else(|| {
+                CliError::Input(format!(
+                    "unknown preset `{name}`: expected one of {}",
+                    presets::names()
+                ))
+            }),
+        None => {
+            let width = presets::PRESETS
+                .iter()
+                .map(|p| p.name.len())
+                .max()
+                .unwrap_or(0);
+            let mut text: Vec<String> = presets::PRESETS
+                .iter()
+                .map(|p| format!("{:width$}  {}", p.name, p.summary))
+                .collect();
+            text.push(String::new());
+            text.push(
+                "Run one with `surfgrav run NAME`; print its scene file with `surfgrav presets --show NAME`."
+                    .into(),
+            );
+            Ok(text.join("\n"))
+        }
+    }
+}
+
+/// Command-line overrides of a scene.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Overrides {
+    /// --t-end.
+    pub t_end: Option<f64>,
+    /// --dt.
+    pub dt: Option<f64>,
+    /// --integrator.
+    pub integrator: Option<IntegratorName>,
+    /// --tolerance.
+    pub tolerance: Option<f64>,
+}
+
+impl Overrides {
+    fn parse(
+        t_end: Option<String>,
+        dt: Option<String>,
+        integrator: Option<String>,
+        tolerance: Option<String>,
+    ) -> Result<Self, CliError> {
+        let positive = |name: &'static str, v: Option<String>| {
+            v.map(|text| parse_positive(name, &text).map_err(CliError::Input))
+                .transpose()
+        };
+        let t_end = t_end
+            .map(|text| match text.trim().parse::<f64>() {
+                Ok(x) if x.is_finite() => Ok(x),
+                _ => Err(CliError::Input(format!(
+                    "--t-end must be a finite number, got `{text}`"
+                ))),
+            })
+            .transpose()?;
+        Ok(Self {
+            t_end,
+            dt: positive("--dt", dt)?,
+            integrator: integrator
+                .map(|name| {
+                    name.trim()
+                        .to_ascii_lowercase()
+                        .parse::<IntegratorName>()
+                        .map_err(|e| CliError::Input(format!("--integrator: {e}")))
+                })
+                .transpose()?,
+            tolerance: positive("--tolerance", tolerance)?,
+        })
+    }
+}
+
+/// Reads a preset or a scene file and applies the overrides.
+///
+/// # Errors
+/// Neither a preset nor a readable file; the scene's own errors; bad overrides.
+pub fn load_scene(which: &str, overrides: &Overrides) -> Result<Scene, CliError> {
+    let path = Path::new(which);
+    // A preset name wins unless a file of that name exists; a name that looks like a path is
+    // read as a file (so a typo there says "cannot read").
+    let preset = presets::find(which);
+    let looks_like_file = path.is_file()
+        || (preset.is_none()
+            && (which.ends_with(".toml")
+                || which.contains(std::path::MAIN_SEPARATOR)
+                || which.contains('/')
+                || path.exists()));
+    let mut scene = if looks_like_file {
+        let (file, source) = SceneFile::read(path).map_err(|e| CliError::Input(e.to_string()))?;
+        file.build(&source, &path.display().to_string())
+            .map_err(|e| CliError::Input(e.to_string()))?
+    } else {
+        preset
+            .ok_or_else(|| {
+                CliError::Input(format!(
+                    "`{which}` is neither a preset ({}) nor a scene file",
+                    presets::names()
+                ))
+            })?
+            .scene()
+            .map_err(|e| CliError::Input(e.to_string()))?
+    };
+    scene
+        .override_with(
+            overrides.t_end,
+            overrides.dt,
+            overrides.integrator,
+            overrides.tolerance,
+        )
+        .map_err(CliError::Input)?;
+    Ok(scene)
+}
+
+/// A progress bar on stderr when it is a terminal and not `quiet`; hidden otherwise.
+pub fn progress_bar(quiet: bool, length: u64, message: &str) -> ProgressBar {
+    let bar = if quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::with_draw_target(Some(length), ProgressDrawTarget::stderr())
+    };
+    if let Ok(style) = ProgressStyle::with_template(
+        "{msg} [{elapsed_precise}] {wide_bar} {percent:>3}% (eta {eta})",
+    ) {
+        bar.set_style(style);
+    }
+    bar.set_message(message.to_string());
+    bar
+}
+
+fn run_command(
+    which: &str,
+    out: Option<&Path>,
+    overrides: &Overrides,
+    quiet: bool,
+) -> Result<String, CliError> {
+    let scene = load_scene(which, overrides)?;
+    scene.integrator.make().map_err(CliError::Input)?;
+    let folder = output::choose_folder(out, &scene.name).map_err(CliError::Input)?;
+    let prepared = simulate::prepare(&scene)?;
+    const TICKS: u64 = 1000;
+    let bar = progress_bar(quiet, TICKS, &scene.name);
+    let span = scene.t_end - scene.t_start;
+    let mut last_tick = 0;
+    let record = simulate::simulate(&scene, &prepared, &mut |t| {
+        let tick = (((t - scene.t_start) / span).clamp(0.0, 1.0) * TICKS as f64) as u64;
+        if tick != last_tick {
+            last_tick = tick;
+            bar.set_position(tick);
+        }
+    });
+    bar.finish_and_clear();
+    let record = record?;
+    let staging = output::Staging::new(&folder).map_err(CliError::Failed)?;
+    output::write_trajectory(&record, &staging.path().join("trajectory.csv"))
+        .map_err(CliError::Failed)?;
+    output::write_summary(&record, &staging.path().join("summary.json"))
+        .map_err(CliError::Failed)?;
+    let figures = figures::write_all(&record, staging.path())
+        .map_err(|e| CliError::Failed(format!("figures: {e}")))?;
+    let folder = staging.commit().map_err(CliError::Failed)?;
+    if quiet {
+        return Ok(String::new());
+    }
+    let mut files = vec!["trajectory.csv".to_string(), "summary.json".to_string()];
+    files.extend(
+        figures
+            .iter()
+            .filter_map(|f| f.file_name().map(|n| n.to_string_lossy().into_owned())),
+    );
+    Ok(run_digest(&record, &folder, &files))
+}
+
+/// What `surfgrav run` prints: the folder, its files and the key numbers.
+pub fn run_digest(record: &RunRecord, folder: &Path, files: &[String]) -> String {
+    let show = |x: Option<f64>, digits: usize, unit: &str| {
+        x.map_or("n/a".to_string(), |v| format!("{v:.digits$}{unit}"))
+    };
+    let o = &record.orbit;
+    let mut lines = vec![
+        format!("wrote {}/: {}", folder.display(), files.join(", ")),
+        format!(
+            "{}: {} steps, {} force evaluations, {:.3} s ({}, {})",
+            record.scene.name,
+            record.summary.steps,
+            record.summary.force_evaluations,
+            record.wall_seconds,
+            figures::integrator_label(record),
+            record.method
+        ),
+        format!(
+            "precession ψ_p = {}, Ω_p = {}; T_r = {}, T_ψ = {}; minimum separation {}",
+            show(o.precession_angle_deg, 4, "°"),
+            show(o.precession_rate_arcmin, 3, "′ per time unit"),
+            show(o.radial_period, 4, ""),
+            show(o.azimuthal_period, 4, ""),
+            show(o.minimum_separation, 5, "")
+        ),
+        format!(
+            "energy: σ(ΔE) = {:.2e} per step, max |E − E0|/|E0| = {:.2e}; angular momentum: σ(ΔJ) = {:.2e}, max drift {:.2e}",
+            record.energy.step_changes.standard_deviation,
+            record.energy.max_relative_drift,
+            record.angular_momentum.step_changes.standard_deviation,
+            record.angular_momentum.max_relative_drift
+        ),
+    ];
+    if let Some(t) = record.contact() {
+        lines.push(format!(
+            "the bodies touched at t = {t}: the run stopped there"
+        ));
+    }
+    lines.join("\n")
 }

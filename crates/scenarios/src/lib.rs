@@ -4,5 +4,11 @@
 //! [`spec`].
 
 pub mod cli;
+pub mod figures;
+pub mod output;
 pub mod plot;
+pub mod presets;
+pub mod report;
+pub mod scene;
+pub mod simulate;
 pub mod spec;

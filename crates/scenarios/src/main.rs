@@ -32,13 +32,15 @@ fn main() -> ExitCode {
         }
     };
     match run(cli) {
-        Ok(json) => {
-            println!("{json}");
+        Ok(text) => {
+            if !text.is_empty() {
+                println!("{text}");
+            }
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("error: {}", e.0);
-            ExitCode::from(2)
+            eprintln!("error: {}", e.message());
+            ExitCode::from(e.exit_code())
         }
     }
 }

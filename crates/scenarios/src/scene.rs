@@ -1,0 +1,996 @@
+//! Scene files: a two-body scene written in TOML, read into plain serde structs
+//! ([`SceneFile`]) and validated across fields by [`SceneFile::build`] into a runnable
+//! [`Scene`].
+//!
+//! ```toml
+//! name = "paper-2s"                     # names the default output folder
+//! description = "two oblate spheroids"  # optional
+//! gravitational_constant = 1.0          # or units = "si" (G = 6.6743e-11); default G = 1
+//! t_end = 300.0                         # end time (t starts at t_start, default 0)
+//!
+//! [body_a]
+//! shape = "spheroid"        # point | sphere | spheroid | ellipsoid | disk
+//! equatorial_radius = 1.0   # spheroid: equatorial_radius, polar_radius (symmetry axis = body z)
+//! polar_radius = 0.25       # sphere, disk: radius; ellipsoid: semi_axes = [a, b, c]
+//! mass = 1.0                # or density = ... (solids only)
+//! position = [-3.5, 0.0, 0.0]
+//! velocity = [0.0, 0.2, 0.0]
+//! orientation = [0.0, 0.0, 0.0]  # optional rotation vector (axis × angle, rad), body → world
+//! spin = [0.0, 0.0, 0.0]         # optional angular velocity (world frame, rad per time unit)
+//!
+//! [body_b]
+//! # ... as body_a
+//!
+//! [integrator]
+//! method = "rk4"     # rk4 | leapfrog | yoshida4 | yoshida6 | yoshida8 | dopri5 | dop853
+//! step = 0.1         # fixed-step methods
+//! # tolerance = 1e-10  # adaptive methods (relative and absolute)
+//!
+//! [interaction]      # optional
+//! tolerance = 1e-12  # relative accuracy of the surface integrals
+//! tabulate = true    # tabulated V(r) when the pair is central (module surfgrav_dynamics::engine_model)
+//!
+//! [output]           # optional
+//! every = 1          # write every n-th sample to trajectory.csv (the last one always)
+//! figures = ["orbits", "conservation", "histograms"]   # the paper's Figs. 2, 3, 4
+//! ```
+//!
+//! Units: lengths, masses and times are whatever the gravitational constant makes them (the
+//! paper's unit-less G = 1 by default). Frames: positions and velocities are world-frame
+//! centroid values; a spheroid's symmetry axis and a disk's normal are the body z axis.
+//!
+//! Every error says where: [`SceneError`] carries the file, the line (when the fault can be
+//! placed), the field and what to change.
+
+use std::fmt;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+use surfgrav_dynamics::{BodyState, Integrator, IntegratorKind, TwoBodyState};
+use surfgrav_potentials::{Real, Vec3};
+use toml::Spanned;
+
+use crate::spec::{Amount, BodyKind, BodySpec, BuiltBody};
+
+/// The gravitational constant in SI units (CODATA 2018), m³ kg⁻¹ s⁻².
+pub const G_SI: Real = 6.674_30e-11;
+
+/// Why a scene could not be read or built: where, which field, what to change.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneError {
+    /// The file (or `preset NAME`).
+    pub file: String,
+    /// 1-based line, when the fault can be placed.
+    pub line: Option<usize>,
+    /// The field (`body_a.mass`), when one is at fault.
+    pub field: Option<String>,
+    /// What is wrong and what to change.
+    pub message: String,
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file)?;
+        if let Some(line) = self.line {
+            write!(f, ":{line}")?;
+        }
+        write!(f, ": ")?;
+        if let Some(field) = &self.field {
+            write!(f, "{field}: ")?;
+        }
+        write!(f, "{}", self.message)
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// The shapes a scene body can have.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Shape {
+    /// A point mass.
+    Point,
+    /// A homogeneous sphere.
+    Sphere,
+    /// A homogeneous spheroid (symmetry axis along the body z axis).
+    Spheroid,
+    /// A homogeneous triaxial ellipsoid (semi-axes along body x, y, z).
+    Ellipsoid,
+    /// A thin uniform disk in the body x–y plane.
+    Disk,
+}
+
+/// One body as written in a scene file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyFile {
+    /// The shape.
+    pub shape: Spanned<Shape>,
+    /// Radius of a sphere or disk.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius: Option<Spanned<Real>>,
+    /// Equatorial radius `a` of a spheroid.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub equatorial_radius: Option<Spanned<Real>>,
+    /// Polar radius `c` of a spheroid (along its symmetry axis).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polar_radius: Option<Spanned<Real>>,
+    /// Semi-axes `[a, b, c]` of an ellipsoid, along body x, y, z.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub semi_axes: Option<Spanned<[Real; 3]>>,
+    /// Total mass.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass: Option<Spanned<Real>>,
+    /// Density (solids only), instead of the mass.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density: Option<Spanned<Real>>,
+    /// Initial centroid position (world frame).
+    pub position: Spanned<[Real; 3]>,
+    /// Initial centroid velocity (world frame).
+    pub velocity: Spanned<[Real; 3]>,
+    /// Orientation as a rotation vector (axis × angle, radians), body frame → world frame.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<Spanned<[Real; 3]>>,
+    /// Angular velocity (world frame, radians per time unit); carried unchanged.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin: Option<Spanned<[Real; 3]>>,
+}
+
+/// The integrator as written in a scene file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IntegratorFile {
+    /// Method name (see [`IntegratorName`]).
+    pub method: Spanned<String>,
+    /// Step of a fixed-step method.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step: Option<Spanned<Real>>,
+    /// Relative (and absolute) tolerance of an adaptive method.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<Spanned<Real>>,
+}
+
+/// Interaction settings as written in a scene file.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InteractionFile {
+    /// Relative accuracy of the surface integrals (default 1e-12).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<Spanned<Real>>,
+    /// Tabulate V(r) when the pair is central (default true).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tabulate: Option<bool>,
+}
+
+/// Output settings as written in a scene file.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputFile {
+    /// Write every n-th sample to the trajectory (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub every: Option<Spanned<i64>>,
+    /// Figures to draw (default all three).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub figures: Option<Spanned<Vec<FigureKind>>>,
+}
+
+/// The figures a run can draw.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FigureKind {
+    /// The paper's Fig. 2: both orbits about the centre of mass, and B relative to A.
+    Orbits,
+    /// The paper's Fig. 3: separation, ΔE and ΔJ against time.
+    Conservation,
+    /// The paper's Fig. 4: histograms of ΔE and ΔJ.
+    Histograms,
+}
+
+impl FigureKind {
+    /// Every figure, in order.
+    pub const ALL: [FigureKind; 3] = [
+        FigureKind::Orbits,
+        FigureKind::Conservation,
+        FigureKind::Histograms,
+    ];
+}
+
+/// A scene file as written (plain data; [`SceneFile::build`] validates it).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Scene name (names the default output folder).
+    pub name: Spanned<String>,
+    /// Free text.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// A named unit system: `"paper"` (G = 1) or `"si"` (G = 6.6743e-11).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub units: Option<Spanned<String>>,
+    /// The gravitational constant (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gravitational_constant: Option<Spanned<Real>>,
+    /// Start time (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub t_start: Option<Spanned<Real>>,
+    /// End time.
+    pub t_end: Spanned<Real>,
+    /// Body A.
+    pub body_a: Spanned<BodyFile>,
+    /// Body B.
+    pub body_b: Spanned<BodyFile>,
+    /// The integrator.
+    pub integrator: Spanned<IntegratorFile>,
+    /// Interaction settings.
+    #[serde(default)]
+    pub interaction: InteractionFile,
+    /// Output settings.
+    #[serde(default)]
+    pub output: OutputFile,
+}
+
+/// The integrators a scene can name (the dynamics crate's [`IntegratorKind`]).
+pub type IntegratorName = IntegratorKind;
+
+/// A validated integrator choice: the method with its step or tolerance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum IntegratorChoice {
+    /// A fixed-step method.
+    Fixed {
+        /// The method.
+        method: IntegratorName,
+        /// The step.
+        step: Real,
+    },
+    /// An adaptive method.
+    Adaptive {
+        /// The method.
+        method: IntegratorName,
+        /// Relative and absolute tolerance.
+        tolerance: Real,
+    },
+}
+
+impl IntegratorChoice {
+    /// The method.
+    pub fn method(&self) -> IntegratorName {
+        match *self {
+            Self::Fixed { method, .. } | Self::Adaptive { method, .. } => method,
+        }
+    }
+
+    /// The integrator, ready to run.
+    ///
+    /// # Errors
+    /// The integrator's own parameter errors.
+    pub fn make(&self) -> Result<Box<dyn Integrator>, String> {
+        let built = match *self {
+            Self::Fixed { method, step } => method.build(step, Real::NAN),
+            Self::Adaptive { method, tolerance } => method.build(Real::NAN, tolerance),
+        };
+        built.map_err(|e| e.to_string())
+    }
+}
+
+/// A validated scene, ready to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Name (names the default output folder).
+    pub name: String,
+    /// Free text.
+    pub description: Option<String>,
+    /// The gravitational constant.
+    pub gravitational_constant: Real,
+    /// Body A as a spec (kind, dimensions, mass or density).
+    pub spec_a: BodySpec,
+    /// Body B.
+    pub spec_b: BodySpec,
+    /// Body A, validated.
+    pub body_a: BuiltBody,
+    /// Body B, validated.
+    pub body_b: BuiltBody,
+    /// The initial state.
+    pub initial: TwoBodyState,
+    /// Start time.
+    pub t_start: Real,
+    /// End time.
+    pub t_end: Real,
+    /// The integrator.
+    pub integrator: IntegratorChoice,
+    /// Relative accuracy of the surface integrals.
+    pub interaction_tolerance: Real,
+    /// Tabulate V(r) when central.
+    pub tabulate: bool,
+    /// Write every n-th sample.
+    pub output_every: usize,
+    /// Figures to draw.
+    pub figures: Vec<FigureKind>,
+}
+
+/// Byte offset → 1-based line.
+fn line_of(source: &str, offset: usize) -> usize {
+    source
+        .get(..offset.min(source.len()))
+        .map_or(1, |s| s.matches('\n').count() + 1)
+}
+
+/// The nearest `[table]` header above `offset`, if any.
+fn table_above(source: &str, offset: usize) -> Option<String> {
+    let head = source.get(..offset.min(source.len()))?;
+    head.lines().rev().find_map(|line| {
+        let t = line.trim();
+        (t.starts_with('[') && t.ends_with(']')).then(|| t.trim_matches(['[', ']']).to_string())
+    })
+}
+
+/// Builds errors for one source text.
+struct Locator<'s> {
+    file: &'s str,
+    source: &'s str,
+}
+
+impl Locator<'_> {
+    fn at<T>(&self, spanned: &Spanned<T>, field: &str, message: impl Into<String>) -> SceneError {
+        SceneError {
+            file: self.file.to_string(),
+            line: Some(line_of(self.source, spanned.span().start)),
+            field: Some(field.to_string()),
+            message: message.into(),
+        }
+    }
+}
+
+impl SceneFile {
+    /// Parses TOML text; `file` names the source in messages.
+    ///
+    /// # Errors
+    /// Malformed TOML, unknown or missing fields, values of the wrong type, each with the line.
+    pub fn parse(source: &str, file: &str) -> Result<Self, SceneError> {
+        toml::from_str(source).map_err(|e| {
+            let start = e.span().map(|s| s.start);
+            let message = e.message().trim().replace('\n', " ");
+            SceneError {
+                file: file.to_string(),
+                line: start.map(|s| line_of(source, s)),
+                field: start
+                    .and_then(|s| table_above(source, s))
+                    .map(|t| format!("[{t}]")),
+                message,
+            }
+        })
+    }
+
+    /// Reads and parses a scene file.
+    ///
+    /// # Errors
+    /// An unreadable file, then as [`SceneFile::parse`].
+    pub fn read(path: &Path) -> Result<(Self, String), SceneError> {
+        let file = path.display().to_string();
+        let source = std::fs::read_to_string(path).map_err(|e| SceneError {
+            file: file.clone(),
+            line: None,
+            field: None,
+            message: format!("cannot read the scene file: {e}"),
+        })?;
+        Ok((Self::parse(&source, &file)?, source))
+    }
+
+    /// The scene as TOML text (comments are not kept).
+    ///
+    /// # Errors
+    /// Only if the TOML serialiser fails (it does not for these structs).
+    pub fn to_toml(&self) -> Result<String, String> {
+        toml::to_string(self).map_err(|e| e.to_string())
+    }
+
+    /// Validates every field and their combinations and builds the scene. `source` is the text
+    /// the file was parsed from (for line numbers) and `file` names it.
+    ///
+    /// # Errors
+    /// A [`SceneError`] naming the field, its line and what to change.
+    pub fn build(&self, source: &str, file: &str) -> Result<Scene, SceneError> {
+        let loc = Locator { file, source };
+        let positive = |value: &Spanned<Real>, field: &str| -> Result<Real, SceneError> {
+            let v = *value.get_ref();
+            if v.is_finite() && v > 0.0 {
+                Ok(v)
+            } else {
+                Err(loc.at(
+                    value,
+                    field,
+                    format!("must be a positive finite number, got {v}"),
+                ))
+            }
+        };
+        let name = self.name.get_ref().trim().to_string();
+        let name_ok = !name.is_empty()
+            && name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+            && !name.starts_with('.');
+        if !name_ok {
+            return Err(loc.at(
+                &self.name,
+                "name",
+                "must be a non-empty folder-safe name (letters, digits, -, _, .; not starting with .)",
+            ));
+        }
+
+        let g = match (&self.units, &self.gravitational_constant) {
+            (Some(u), Some(_)) => {
+                return Err(loc.at(
+                    u,
+                    "units",
+                    "give either units or gravitational_constant, not both",
+                ))
+            }
+            (Some(u), None) => match u.get_ref().as_str() {
+                "paper" => 1.0,
+                "si" => G_SI,
+                other => {
+                    return Err(loc.at(
+                        u,
+                        "units",
+                        format!("unknown unit system `{other}`: expected \"paper\" (G = 1) or \"si\" (G = 6.6743e-11)"),
+                    ))
+                }
+            },
+            (None, Some(g)) => positive(g, "gravitational_constant")?,
+            (None, None) => 1.0,
+        };
+
+        let t_start = match &self.t_start {
+            Some(t) if !t.get_ref().is_finite() => {
+                return Err(loc.at(t, "t_start", "must be a finite number"))
+            }
+            Some(t) => *t.get_ref(),
+            None => 0.0,
+        };
+        let t_end = *self.t_end.get_ref();
+        if !(t_end.is_finite() && t_end > t_start) {
+            return Err(loc.at(
+                &self.t_end,
+                "t_end",
+                format!("must be finite and greater than t_start = {t_start}, got {t_end}"),
+            ));
+        }
+
+        let (spec_a, body_a, state_a) = build_body(&loc, &self.body_a, "body_a", g)?;
+        let (spec_b, body_b, state_b) = build_body(&loc, &self.body_b, "body_b", g)?;
+        let initial = TwoBodyState::new(state_a, state_b);
+        if initial.separation() == 0.0 {
+            return Err(loc.at(
+                &self.body_b.get_ref().position,
+                "body_b.position",
+                "the centroids coincide: move body B away from body A",
+            ));
+        }
+
+        let integrator = build_integrator(&loc, &self.integrator)?;
+
+        let interaction_tolerance = match &self.interaction.tolerance {
+            Some(t) => {
+                let v = positive(t, "interaction.tolerance")?;
+                if !(1e-15..=1e-2).contains(&v) {
+                    return Err(loc.at(
+                        t,
+                        "interaction.tolerance",
+                        format!("must lie in [1e-15, 1e-2], got {v}"),
+                    ));
+                }
+                v
+            }
+            None => 1e-12,
+        };
+
+        let output_every = match &self.output.every {
+            Some(n) if *n.get_ref() < 1 => {
+                return Err(loc.at(
+                    n,
+                    "output.every",
+                    format!("must be a positive whole number, got {}", n.get_ref()),
+                ))
+            }
+            Some(n) => usize::try_from(*n.get_ref()).unwrap_or(usize::MAX),
+            None => 1,
+        };
+        let figures = match &self.output.figures {
+            Some(f) => {
+                let mut list = Vec::new();
+                for kind in f.get_ref() {
+                    if list.contains(kind) {
+                        return Err(loc.at(f, "output.figures", "lists a figure twice"));
+                    }
+                    list.push(*kind);
+                }
+                list
+            }
+            None => FigureKind::ALL.to_vec(),
+        };
+
+        Ok(Scene {
+            name,
+            description: self.description.clone(),
+            gravitational_constant: g,
+            spec_a,
+            spec_b,
+            body_a,
+            body_b,
+            initial,
+            t_start,
+            t_end,
+            integrator,
+            interaction_tolerance,
+            tabulate: self.interaction.tabulate.unwrap_or(true),
+            output_every,
+            figures,
+        })
+    }
+}
+
+fn build_body(
+    loc: &Locator<'_>,
+    body: &Spanned<BodyFile>,
+    table: &str,
+    g: Real,
+) -> Result<(BodySpec, BuiltBody, BodyState), SceneError> {
+    let b = body.get_ref();
+    let shape = *b.shape.get_ref();
+    let field = |name: &str| format!("{table}.{name}");
+    // Which size fields the shape takes.
+    let takes: &[&str] = match shape {
+        Shape::Point => &[],
+        Shape::Sphere | Shape::Disk => &["radius"],
+        Shape::Spheroid => &["equatorial_radius", "polar_radius"],
+        Shape::Ellipsoid => &["semi_axes"],
+    };
+    let shape_name = match shape {
+        Shape::Point => "point",
+        Shape::Sphere => "sphere",
+        Shape::Spheroid => "spheroid",
+        Shape::Ellipsoid => "ellipsoid",
+        Shape::Disk => "disk",
+    };
+    let given: [(&str, Option<usize>); 4] = [
+        ("radius", b.radius.as_ref().map(|s| s.span().start)),
+        (
+            "equatorial_radius",
+            b.equatorial_radius.as_ref().map(|s| s.span().start),
+        ),
+        (
+            "polar_radius",
+            b.polar_radius.as_ref().map(|s| s.span().start),
+        ),
+        ("semi_axes", b.semi_axes.as_ref().map(|s| s.span().start)),
+    ];
+    for (name, at) in given {
+        if let Some(start) = at {
+            if !takes.contains(&name) {
+                let expected = if takes.is_empty() {
+                    "no size".to_string()
+                } else {
+                    takes.join(" and ")
+                };
+                return Err(SceneError {
+                    file: loc.file.to_string(),
+                    line: Some(line_of(loc.source, start)),
+                    field: Some(field(name)),
+                    message: format!(
+                        "a {shape_name} has no {name}; it takes {expected}: remove this line or change the shape"
+                    ),
+                });
+            }
+        }
+    }
+    let missing = |name: &str| {
+        loc.at(
+            &b.shape,
+            &field(name),
+            format!("a {shape_name} needs {name}: add it to [{table}]"),
+        )
+    };
+    let size = |value: &Option<Spanned<Real>>, name: &str| -> Result<Real, SceneError> {
+        let v = value.as_ref().ok_or_else(|| missing(name))?;
+        let x = *v.get_ref();
+        if x.is_finite() && x > 0.0 {
+            Ok(x)
+        } else {
+            Err(loc.at(
+                v,
+                &field(name),
+                format!("must be a positive finite length, got {x}"),
+            ))
+        }
+    };
+    let (kind, dimensions) = match shape {
+        Shape::Point => (BodyKind::Point, vec![]),
+        Shape::Sphere => (BodyKind::Sphere, vec![size(&b.radius, "radius")?]),
+        Shape::Disk => (BodyKind::Disk, vec![size(&b.radius, "radius")?]),
+        Shape::Spheroid => (
+            BodyKind::Spheroid,
+            vec![
+                size(&b.equatorial_radius, "equatorial_radius")?,
+                size(&b.polar_radius, "polar_radius")?,
+            ],
+        ),
+        Shape::Ellipsoid => {
+            let v = b.semi_axes.as_ref().ok_or_else(|| missing("semi_axes"))?;
+            let axes = *v.get_ref();
+            if !axes.iter().all(|x| x.is_finite() && *x > 0.0) {
+                return Err(loc.at(
+                    v,
+                    &field("semi_axes"),
+                    format!("must be three positive finite lengths [a, b, c], got {axes:?}"),
+                ));
+            }
+            (BodyKind::Ellipsoid, axes.to_vec())
+        }
+    };
+    let amount_value = |v: &Spanned<Real>, name: &str| -> Result<Real, SceneError> {
+        let x = *v.get_ref();
+        if x.is_finite() && x > 0.0 {
+            Ok(x)
+        } else {
+            Err(loc.at(
+                v,
+                &field(name),
+                format!("must be a positive finite number, got {x}"),
+            ))
+        }
+    };
+    let amount = match (&b.mass, &b.density) {
+        (Some(_), Some(d)) => {
+            return Err(loc.at(
+                d,
+                &field("density"),
+                "give either mass or density, not both",
+            ))
+        }
+        (Some(m), None) => Amount::Mass(amount_value(m, "mass")?),
+        (None, Some(d)) => {
+            if matches!(shape, Shape::Point | Shape::Disk) {
+                return Err(loc.at(
+                    d,
+                    &field("density"),
+                    format!("a {shape_name} has no volume density: give its mass instead"),
+                ));
+            }
+            Amount::Density(amount_value(d, "density")?)
+        }
+        (None, None) => {
+            return Err(loc.at(
+                &b.shape,
+                &field("mass"),
+                format!("a {shape_name} needs mass (or density for a solid): add it to [{table}]"),
+            ))
+        }
+    };
+    let spec = BodySpec {
+        kind,
+        dimensions,
+        amount,
+    };
+    let built = spec
+        .build(g)
+        .map_err(|e| loc.at(&b.shape, table, e.to_string()))?;
+    let vec3 = |v: &Spanned<[Real; 3]>, name: &str| -> Result<Vec3, SceneError> {
+        let a = *v.get_ref();
+        if a.iter().all(|x| x.is_finite()) {
+            Ok(Vec3::new(a[0], a[1], a[2]))
+        } else {
+            Err(loc.at(v, &field(name), "must be three finite numbers [x, y, z]"))
+        }
+    };
+    let position = vec3(&b.position, "position")?;
+    let velocity = vec3(&b.velocity, "velocity")?;
+    let mut state = BodyState::new(position, velocity);
+    if let Some(o) = &b.orientation {
+        state.orientation = nalgebra::UnitQuaternion::from_scaled_axis(vec3(o, "orientation")?);
+    }
+    if let Some(s) = &b.spin {
+        state.angular_velocity = vec3(s, "spin")?;
+    }
+    Ok((spec, built, state))
+}
+
+fn build_integrator(
+    loc: &Locator<'_>,
+    integrator: &Spanned<IntegratorFile>,
+) -> Result<IntegratorChoice, SceneError> {
+    let i = integrator.get_ref();
+    let method: IntegratorName = i
+        .method
+        .get_ref()
+        .trim()
+        .to_ascii_lowercase()
+        .parse()
+        .map_err(|e: surfgrav_dynamics::IntegratorChoiceError| {
+            loc.at(&i.method, "integrator.method", e.to_string())
+        })?;
+    let positive = |v: &Spanned<Real>, name: &str| -> Result<Real, SceneError> {
+        let x = *v.get_ref();
+        if x.is_finite() && x > 0.0 {
+            Ok(x)
+        } else {
+            Err(loc.at(
+                v,
+                name,
+                format!("must be a positive finite number, got {x}"),
+            ))
+        }
+    };
+    if method.is_adaptive() {
+        if let Some(s) = &i.step {
+            return Err(loc.at(
+                s,
+                "integrator.step",
+                format!(
+                    "{} chooses its own steps: give integrator.tolerance instead of step",
+                    method.name()
+                ),
+            ));
+        }
+        let t = i.tolerance.as_ref().ok_or_else(|| {
+            loc.at(
+                &i.method,
+                "integrator.tolerance",
+                format!(
+                    "{} needs a tolerance, e.g. tolerance = 1e-10",
+                    method.name()
+                ),
+            )
+        })?;
+        let tolerance = positive(t, "integrator.tolerance")?;
+        Ok(IntegratorChoice::Adaptive { method, tolerance })
+    } else {
+        if let Some(t) = &i.tolerance {
+            return Err(loc.at(
+                t,
+                "integrator.tolerance",
+                format!(
+                    "{} is a fixed-step method: give integrator.step instead of tolerance",
+                    method.name()
+                ),
+            ));
+        }
+        let s = i.step.as_ref().ok_or_else(|| {
+            loc.at(
+                &i.method,
+                "integrator.step",
+                format!("{} needs a step, e.g. step = 0.1", method.name()),
+            )
+        })?;
+        let step = positive(s, "integrator.step")?;
+        Ok(IntegratorChoice::Fixed { method, step })
+    }
+}
+
+impl Scene {
+    /// Replaces the end time, step, integrator or tolerance (command-line overrides). The
+    /// integrator's step or tolerance is kept when the kind (fixed or adaptive) stays; a switch
+    /// of kind needs the new step or tolerance.
+    ///
+    /// # Errors
+    /// A message naming the option and what to change.
+    pub fn override_with(
+        &mut self,
+        t_end: Option<Real>,
+        step: Option<Real>,
+        method: Option<IntegratorName>,
+        tolerance: Option<Real>,
+    ) -> Result<(), String> {
+        let positive = |name: &str, v: Real| {
+            if v.is_finite() && v > 0.0 {
+                Ok(v)
+            } else {
+                Err(format!("{name} must be a positive finite number, got {v}"))
+            }
+        };
+        if let Some(t) = t_end {
+            if !(t.is_finite() && t > self.t_start) {
+                return Err(format!(
+                    "--t-end must be finite and greater than the start time {}, got {t}",
+                    self.t_start
+                ));
+            }
+            self.t_end = t;
+        }
+        let method = method.unwrap_or(self.integrator.method());
+        if method.is_adaptive() {
+            if step.is_some() {
+                return Err(format!(
+                    "--dt does not apply to the adaptive integrator {}: give --tolerance",
+                    method.name()
+                ));
+            }
+            let tolerance = match (tolerance, self.integrator) {
+                (Some(t), _) => positive("--tolerance", t)?,
+                (None, IntegratorChoice::Adaptive { tolerance, .. }) => tolerance,
+                (None, IntegratorChoice::Fixed { .. }) => {
+                    return Err(format!(
+                        "the adaptive integrator {} needs --tolerance",
+                        method.name()
+                    ))
+                }
+            };
+            self.integrator = IntegratorChoice::Adaptive { method, tolerance };
+        } else {
+            if tolerance.is_some() {
+                return Err(format!(
+                    "--tolerance does not apply to the fixed-step integrator {}: give --dt",
+                    method.name()
+                ));
+            }
+            let step = match (step, self.integrator) {
+                (Some(s), _) => positive("--dt", s)?,
+                (None, IntegratorChoice::Fixed { step, .. }) => step,
+                (None, IntegratorChoice::Adaptive { .. }) => {
+                    return Err(format!(
+                        "the fixed-step integrator {} needs --dt",
+                        method.name()
+                    ))
+                }
+            };
+            self.integrator = IntegratorChoice::Fixed { method, step };
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::presets;
+
+    fn paper_2s() -> &'static str {
+        presets::find("paper-2s").unwrap().toml
+    }
+
+    /// Replaces `from` by `to` in the paper-2s text and returns the build error.
+    fn error_after(from: &str, to: &str) -> SceneError {
+        let text = paper_2s().replacen(from, to, 1);
+        assert_ne!(text, paper_2s(), "`{from}` not in the preset");
+        match SceneFile::parse(&text, "s.toml").and_then(|f| f.build(&text, "s.toml")) {
+            Ok(_) => panic!("`{to}` was accepted"),
+            Err(e) => e,
+        }
+    }
+
+    fn line_containing(text: &str, needle: &str) -> usize {
+        text.lines().position(|l| l.contains(needle)).unwrap() + 1
+    }
+
+    #[test]
+    fn errors_name_file_line_field_and_fix() {
+        let cases: &[(&str, &str, &str, &str)] = &[
+            // (replace, with, line that must be blamed, words the message must contain)
+            (
+                "polar_radius = 0.25",
+                "polar_radius = -0.25",
+                "polar_radius = -0.25",
+                "body_a.polar_radius: must be a positive",
+            ),
+            (
+                "mass = 1.0\nposition = [3.5",
+                "mass = 0.0\nposition = [3.5",
+                "mass = 0.0",
+                "body_b.mass: must be a positive",
+            ),
+            (
+                "step = 0.1",
+                "step = 0",
+                "step = 0",
+                "integrator.step: must be a positive",
+            ),
+            (
+                "t_end = 300.0",
+                "t_end = -1.0",
+                "t_end = -1.0",
+                "t_end: must be finite and greater",
+            ),
+            (
+                "method = \"rk4\"",
+                "method = \"rk5\"",
+                "method = \"rk5\"",
+                "unknown integrator 'rk5'; valid names: rk4",
+            ),
+            (
+                "polar_radius = 0.25",
+                "polar_radius = 0.25\nradius = 2.0",
+                "radius = 2.0",
+                "body_a.radius: a spheroid has no radius",
+            ),
+            (
+                "polar_radius = 0.25",
+                "polar_radius = 0.25\ncolour = 2.0",
+                "colour = 2.0",
+                "unknown field `colour`",
+            ),
+            (
+                "shape = \"spheroid\"",
+                "shape = \"cube\"",
+                "shape = \"cube\"",
+                "unknown variant `cube`",
+            ),
+            (
+                "step = 0.1",
+                "step = 0.1\ntolerance = 1e-9",
+                "tolerance = 1e-9",
+                "give integrator.step instead",
+            ),
+            (
+                "gravitational_constant = 1.0",
+                "gravitational_constant = 1.0\nunits = \"si\"",
+                "units = \"si\"",
+                "not both",
+            ),
+            (
+                "t_end = 300.0",
+                "t_end = 300.0 300",
+                "t_end = 300.0 300",
+                "",
+            ),
+        ];
+        for (from, to, blamed, words) in cases {
+            let from = from.replace("\\n", "\n");
+            let to = to.replace("\\n", "\n");
+            let text = paper_2s().replacen(&from, &to, 1);
+            let e = error_after(&from, &to);
+            let shown = e.to_string();
+            assert_eq!(e.file, "s.toml");
+            assert_eq!(e.line, Some(line_containing(&text, blamed)), "{shown}");
+            assert!(
+                shown.starts_with(&format!("s.toml:{}: ", e.line.unwrap())),
+                "{shown}"
+            );
+            assert!(shown.contains(words), "`{shown}` lacks `{words}`");
+            assert!(!shown.contains('\n'), "one line: {shown}");
+        }
+    }
+
+    #[test]
+    fn missing_fields_are_named() {
+        let e = error_after("polar_radius = 0.25\n", "");
+        assert!(
+            e.to_string()
+                .contains("body_a.polar_radius: a spheroid needs polar_radius"),
+            "{e}"
+        );
+        let e = error_after("mass = 1.0\n", "");
+        assert!(
+            e.to_string().contains("body_a.mass: a spheroid needs mass"),
+            "{e}"
+        );
+        let e = error_after("step = 0.1\n", "");
+        assert!(e.to_string().contains("rk4 needs a step"), "{e}");
+        let e = error_after("t_end = 300.0\n", "");
+        assert!(e.to_string().contains("t_end"), "{e}");
+    }
+
+    #[test]
+    fn overrides_switch_integrators_and_check_values() {
+        let mut s = presets::find("paper-2s").unwrap().scene().unwrap();
+        s.override_with(Some(10.0), Some(0.05), Some(IntegratorName::Yoshida4), None)
+            .unwrap();
+        assert_eq!(s.t_end, 10.0);
+        assert_eq!(
+            s.integrator,
+            IntegratorChoice::Fixed {
+                method: IntegratorName::Yoshida4,
+                step: 0.05
+            }
+        );
+        assert!(s
+            .override_with(None, None, Some(IntegratorName::Dopri5), None)
+            .is_err());
+        s.override_with(None, None, Some(IntegratorName::Dopri5), Some(1e-9))
+            .unwrap();
+        assert!(s
+            .override_with(None, None, Some(IntegratorName::Rk4), None)
+            .unwrap_err()
+            .contains("--dt"));
+        assert!(s.override_with(Some(-1.0), None, None, None).is_err());
+        assert!(s.override_with(None, Some(0.1), None, None).is_err());
+        assert!("euler".parse::<IntegratorName>().is_err());
+    }
+}
