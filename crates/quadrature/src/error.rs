@@ -80,6 +80,21 @@ pub enum QuadratureError {
         /// The value returned.
         value: f64,
     },
+    /// A nested rule was asked for an impossible family: an odd base for a half periodic rule,
+    /// a Fejér base below 2, or too many levels.
+    #[error(
+        "nested rule with base {base} and {levels} levels is not available: a half periodic \
+         rule needs an even base, a Fejer rule a base of at least 2, and at most {maximum} levels \
+         (Fejer: at most 4096 subdivisions)"
+    )]
+    InvalidNesting {
+        /// Level-0 size given.
+        base: usize,
+        /// Levels asked for.
+        levels: usize,
+        /// The largest number of levels.
+        maximum: usize,
+    },
     /// The integral or its error estimate overflowed although every integrand value was finite.
     #[error("the integral or its error estimate overflowed; rescale the integrand")]
     NonFiniteIntegral,

@@ -12,6 +12,7 @@
 //! | [`GaussLegendre`] | $\int_a^b f\,\mathrm dx$ with $n$ nodes | polynomials of degree $\le 2n-1$; nodes and weights correctly rounded in every test up to $n = 1000$ |
 //! | [`PeriodicTrapezoid`] | one period of a periodic $f$ | $e^{ikx}$ for $\lvert k\rvert < n$; geometric convergence for analytic $f$ |
 //! | [`TensorProductRule`] | $\iint f\,\mathrm du\,\mathrm dv$ on a rectangle | products of what its factors integrate exactly |
+//! | [`NestedTensorRule`], [`NestedCubature`] | $\iint \mathbf f\,\mathrm du\,\mathrm dv$, periodic in $u$, by nested doubling (trapezoid × Fejér) | requested tolerance; the estimate costs no extra evaluation |
 //! | [`AdaptiveCubature`] | $\iint \mathbf f\,\mathrm du\,\mathrm dv$, $N$ components at once | requested tolerance, with error estimate and evaluation count |
 //!
 //! One-dimensional rules share the [`Rule1D`] trait (an [`Interval`], nodes, weights); any two
@@ -40,6 +41,7 @@ mod twofold;
 pub mod adaptive;
 pub mod gauss_kronrod;
 pub mod gauss_legendre;
+pub mod nested;
 pub mod periodic_trapezoid;
 pub mod rule;
 pub mod tensor;
@@ -51,6 +53,10 @@ pub use adaptive::{
 };
 pub use error::QuadratureError;
 pub use gauss_legendre::{GaussLegendre, MAX_GAUSS_LEGENDRE_ORDER};
+pub use nested::{
+    rate_estimate, NestedCubature, NestedEstimate, NestedFejer, NestedLevels, NestedTensorRule,
+    NestedTrapezoid,
+};
 pub use periodic_trapezoid::PeriodicTrapezoid;
 pub use rule::{Interval, Rule1D};
 pub use tensor::{Rectangle, TensorNode, TensorProductRule};

@@ -170,3 +170,79 @@ fn evaluation_counts_for_the_paper_pair() {
 }
 
 const SNAPSHOT: [usize; 5] = [506, 262, 210, 128, 110];
+
+/// The nested doubling rule's estimate (rate estimate δ₂²/δ₁ per direction) bounds the true
+/// error for every case above plus the paper pair at gap 10⁻³ (near contact), over the
+/// tolerances 10⁻⁴ … 10⁻¹², integrating over either body.
+#[test]
+fn nested_estimates_bound_the_true_error() {
+    let mut all = cases();
+    all.push(Case {
+        label: "paper pair, gap 1e-3",
+        a: paper_spheroid(),
+        b: paper_spheroid(),
+        pose_a: Pose::identity(),
+        pose_b: pose([2.001, 0.0, 0.0], [0.0; 3]),
+    });
+    all.push(Case {
+        label: "paper pair, gap 1e-3, B lifted 0.1 and tilted",
+        a: paper_spheroid(),
+        b: paper_spheroid(),
+        pose_a: Pose::identity(),
+        pose_b: pose([2.0, 0.0, 0.1], [0.0, 0.2, 0.0]),
+    });
+    let mut worst_ratio: f64 = 0.0;
+    for case in all {
+        let truth = reference(&case);
+        for tolerance in [1e-4, 1e-6, 1e-8, 1e-10, 1e-12] {
+            for surface in [SurfaceChoice::A, SurfaceChoice::B] {
+                let mut e = engine(InteractionOptions {
+                    relative_tolerance: tolerance,
+                    method: MethodChoice::Nested,
+                    surface,
+                    ..InteractionOptions::default()
+                });
+                let r = e
+                    .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
+                    .unwrap();
+                let err = errors(&r, &truth).max();
+                assert!(r.error_estimate <= tolerance);
+                assert!(
+                    err <= r.error_estimate + truth.error_estimate,
+                    "{} nested over {surface:?} at {tolerance:e}: error {err:e} > estimate {:e}",
+                    case.label,
+                    r.error_estimate
+                );
+                worst_ratio = worst_ratio.max(err / r.error_estimate);
+            }
+        }
+    }
+    println!("worst true error / estimate, nested: {worst_ratio:.3}");
+}
+
+/// Evaluation counts of the nested rule at 10⁻¹² for the founding paper's pair (snapshot).
+#[test]
+fn nested_evaluation_counts_for_the_paper_pair() {
+    let mut counts = vec![];
+    for d in [2.1, 2.55, 3.0, 7.0, 30.0] {
+        let mut e = engine(InteractionOptions {
+            method: MethodChoice::Nested,
+            ..InteractionOptions::default()
+        });
+        let r = e
+            .interact(
+                &paper_spheroid(),
+                &Pose::identity(),
+                &paper_spheroid(),
+                &pose([d, 0.0, 0.0], [0.0; 3]),
+            )
+            .unwrap();
+        counts.push(r.evaluations);
+    }
+    assert_eq!(
+        counts, NESTED_SNAPSHOT,
+        "evaluation counts changed: {counts:?}"
+    );
+}
+
+const NESTED_SNAPSHOT: [usize; 5] = [775, 391, 323, 195, 99];

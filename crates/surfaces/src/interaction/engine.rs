@@ -4,16 +4,18 @@
 use super::body::{Body, BodyShape, SourceField, ALIGNMENT};
 use super::error::{InteractionError, Side};
 use super::kernel::{lamina_sums, solid_sums, FrameMap, LaminaSums, SolidSums};
+use super::nested::{self as nested_rule, ellipsoid_line, round_base, solid_sums_from};
 use super::overlap::{contact, Contact};
 use super::rules::{
-    next_transverse, table_size, NodeTable, Parametrisation, TableKey, TransverseRatio, CLUSTERING,
-    MAX_TRANSVERSE, TRANSVERSE_RATIO,
+    azimuth_count, next_transverse, table_size, NodeTable, Parametrisation, TableKey,
+    TransverseRatio, CLUSTERING, MAX_TRANSVERSE, TRANSVERSE_RATIO,
 };
 use crate::{Real, Surface, Vec3};
 use nalgebra::UnitQuaternion;
 use surfgrav_potentials::{CoplanarDiskPair, Pose, Potential, Region, UniformDisk};
 use surfgrav_quadrature::{
-    AdaptiveCubature, AdaptiveOptions, Rectangle, MINIMUM_EVALUATION_BUDGET,
+    AdaptiveCubature, AdaptiveOptions, NestedCubature, NestedLevels, Rectangle,
+    MINIMUM_EVALUATION_BUDGET,
 };
 
 /// `with_field!(field, |f| expr)`: evaluates `expr` with `f` bound to the concrete potential
@@ -40,6 +42,15 @@ macro_rules! with_field {
 /// (the force far from the source, where $\sum|t_k|$ exceeds the result a hundredfold).
 pub const ROUNDING_PER_TERM: Real = 4.0 * Real::EPSILON;
 
+/// Azimuth nodes of the nested rule's start grid over the ladder's predicted count (tuned on
+/// the founding paper's pair at separations 2.1 to 30, 10⁻¹²: larger wastes nodes, smaller
+/// makes a doubling, twice the nodes, likely).
+pub const NESTED_AZIMUTH_SCALE: Real = 1.3;
+
+/// Height nodes of the nested rule's start grid over the ladder's predicted Gauss–Legendre
+/// count (Fejér's rule needs more nodes than Gauss–Legendre; tuned as the azimuth scale).
+pub const NESTED_HEIGHT_SCALE: Real = 2.4;
+
 /// The relative accuracy reported for the closed forms (the potentials crate's documented
 /// accuracy of the acceleration, which dominates).
 pub const ANALYTIC_RELATIVE_ERROR: Real = 1e-13;
@@ -55,6 +66,11 @@ pub enum MethodChoice {
     FixedRules,
     /// The adaptive cubature of `surfgrav-quadrature` over the surface's parameter rectangle.
     Adaptive,
+    /// The nested doubling rule ([`super::nested`]): the azimuth–height form of an ellipsoid,
+    /// clustered trapezoid doubling in azimuth × Fejér doubling in height, refining the
+    /// direction whose change is larger; every finer level reuses every evaluation of the
+    /// coarser one. Surfaces other than ellipsoids use the ladder.
+    Nested,
     /// One fixed table of the ladder, with this transverse count per half range (the
     /// [`Interaction::level`] the ladder reports), for timing studies or a resolution known
     /// to suffice. Nothing certifies its accuracy: its `error_estimate` is $+\infty$.
@@ -274,6 +290,8 @@ pub struct InteractionEngine {
     options: InteractionOptions,
     /// The adaptive integrator's workspace, created on first use and kept.
     adaptive: Option<AdaptiveCubature<10>>,
+    /// The nested rule's workspace (line sums), kept.
+    nested: NestedCubature<{ nested_rule::COMPONENTS }>,
 }
 
 fn check_pose(pose: &Pose, body: Side) -> Result<(), InteractionError> {
@@ -327,6 +345,7 @@ impl InteractionEngine {
         Ok(Self {
             options,
             adaptive: None,
+            nested: NestedCubature::new(),
         })
     }
 
@@ -383,6 +402,7 @@ impl InteractionEngine {
         }
         match self.options.method {
             MethodChoice::Adaptive => self.adaptive(x, y, &placement),
+            MethodChoice::Nested => self.nested(x, y, &placement),
             MethodChoice::FixedLevel(transverse) => self.single_level(x, y, &placement, transverse),
             MethodChoice::FixedRules => self.ladder(x, y, &placement),
             MethodChoice::Automatic => match self.ladder(x, y, &placement) {
@@ -721,6 +741,90 @@ impl InteractionEngine {
         }
     }
 
+    /// The nested doubling rule over an ellipsoid X (other surfaces, and bodies of unknown
+    /// shape whose nodes must be checked, go to the ladder).
+    fn nested(
+        &mut self,
+        x: &Body,
+        y: &Body,
+        p: &Placement,
+    ) -> Result<Interaction, InteractionError> {
+        let BodyShape::Solid(e) = x.shape() else {
+            return self.ladder(x, y, p);
+        };
+        if p.node_check {
+            return self.ladder(x, y, p);
+        }
+        let tolerance = self.options.relative_tolerance;
+        let method = match p.side {
+            Side::A => Method::SurfaceOverA,
+            Side::B => Method::SurfaceOverB,
+        };
+        // The start grid's coarser levels are the ladder's predicted sufficient grid.
+        let (azimuth_base, height_base) = self.nested_bases(p);
+        let set = nested_rule::rule_set(azimuth_base, p.clustering, p.half_azimuth, height_base)?;
+        let axes = [e.x_semi_axis(), e.y_semi_axis(), e.z_semi_axis()];
+        let mirror = !p.half_transverse;
+        let density = x.density;
+        let values_of =
+            |v: &[Real; nested_rule::COMPONENTS]| solid_values(solid_sums_from(v), density, p);
+        let start = NestedLevels {
+            periodic: 2,
+            across: 2,
+        };
+        let budget = self.options.max_evaluations;
+        let workspace = &mut self.nested;
+        let estimate = with_field!(&y.field, |f| {
+            let reference = f.potential(&p.map.apply(&Vec3::zeros()));
+            workspace.integrate(
+                &set.rule,
+                start,
+                tolerance,
+                budget,
+                |k, range, out| {
+                    ellipsoid_line(&set, axes, k, range, mirror, f, &p.map, reference, out)
+                },
+                |value, coarse| {
+                    let v = values_of(value);
+                    let change = v
+                        .relative_change(&values_of(coarse))
+                        .max(v.form_discrepancy(v.torque_on_a.norm()));
+                    // Levels that agree to rounding: refining cannot lower the estimate.
+                    if change <= v.rounding {
+                        0.0
+                    } else {
+                        change
+                    }
+                },
+            )
+        })?;
+        let values = values_of(&estimate.value);
+        let error = estimate
+            .error_estimate
+            .max(values.rounding)
+            .max(values.form_discrepancy(values.torque_on_a.norm()));
+        let result = values.finish(method, Some(p.side), estimate.evaluations, error, None)?;
+        if estimate.converged && error <= tolerance {
+            Ok(result)
+        } else {
+            Err(not_met(tolerance, result))
+        }
+    }
+
+    /// Azimuth and height bases of the nested rule's start grid, level (2, 2): it holds about
+    /// [`NESTED_AZIMUTH_SCALE`] times the ladder's predicted azimuth count and
+    /// [`NESTED_HEIGHT_SCALE`] times its transverse count, at least 11 heights per half (fewer
+    /// make the rate estimate rest on 1- and 3-node levels, which stay pre-asymptotic).
+    fn nested_bases(&self, p: &Placement) -> (usize, usize) {
+        let t = self.start_transverse(p);
+        let kappa = TRANSVERSE_RATIO[usize::from(p.ratio)];
+        let n = azimuth_count(t, kappa) as Real;
+        let azimuth = 2 * round_base(((NESTED_AZIMUTH_SCALE * n / 8.0).ceil() as usize).max(1));
+        let height =
+            round_base(((NESTED_HEIGHT_SCALE * Real::from(t) + 1.0) / 4.0).round() as usize).max(3);
+        (azimuth, height)
+    }
+
     /// The adaptive cubature, asked for a quarter of the tolerance on the largest component
     /// (the energy's scale); if the estimate in the engine's norms still exceeds the tolerance
     /// (a force that cancels far away), asked again for less, at most twice, as long as the
@@ -828,40 +932,45 @@ fn assemble(
     }
 }
 
+/// World-frame values, with their rounding bound, from the raw sums over X's (possibly
+/// reduced) node set: the mirror images are added first.
+fn solid_values(mut s: SolidSums, density: Real, p: &Placement) -> Values {
+    if p.half_azimuth {
+        s = symmetrise_solid(&s, 1);
+    }
+    if p.half_transverse {
+        s = symmetrise_solid(&s, 2);
+    }
+    let r = s.integrals(density, 0);
+    let mut values = assemble(
+        p,
+        &r.force,
+        &r.torque,
+        &r.torque_gradient_form,
+        r.potential_energy,
+    );
+    values.rounding = relative_from_absolute(
+        &values,
+        ROUNDING_PER_TERM * density * s.potential_flux_magnitude,
+        ROUNDING_PER_TERM * density * s.potential_moment_magnitude,
+        ROUNDING_PER_TERM * density * s.energy_flux_magnitude / 3.0,
+        (p.position_y - p.position_x).norm(),
+    );
+    values
+}
+
 /// Runs the monomorphised loop for Y's field kind over X's table (dispatch once per table).
 fn evaluate_table(x: &Body, y: &Body, table: &NodeTable, p: &Placement) -> Values {
     match table {
         NodeTable::Solid(t) => {
-            let mut s = with_field!(&y.field, |f| solid_sums(
+            let s = with_field!(&y.field, |f| solid_sums(
                 t.points(),
                 t.weighted_area_vectors(),
                 &t.origin(),
                 f,
                 &p.map
             ));
-            if p.half_azimuth {
-                s = symmetrise_solid(&s, 1);
-            }
-            if p.half_transverse {
-                s = symmetrise_solid(&s, 2);
-            }
-            let r = s.integrals(x.density, t.len());
-            let mut values = assemble(
-                p,
-                &r.force,
-                &r.torque,
-                &r.torque_gradient_form,
-                r.potential_energy,
-            );
-            let rho = x.density;
-            values.rounding = relative_from_absolute(
-                &values,
-                ROUNDING_PER_TERM * rho * s.potential_flux_magnitude,
-                ROUNDING_PER_TERM * rho * s.potential_moment_magnitude,
-                ROUNDING_PER_TERM * rho * s.energy_flux_magnitude / 3.0,
-                (p.position_y - p.position_x).norm(),
-            );
-            values
+            solid_values(s, x.density, p)
         }
         NodeTable::Lamina(t) => {
             let mut s = with_field!(&y.field, |f| lamina_sums(t, f, &p.map));

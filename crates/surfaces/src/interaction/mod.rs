@@ -57,6 +57,14 @@
 //!    azimuth–height form's $\sqrt{c^2 - z^2}$ end point at the poles is removed only by a full
 //!    azimuthal trapezoid sum).
 //!
+//! 5. **Nested doubling rule** ([`nested`], [`MethodChoice::Nested`]) on request, for
+//!    ellipsoid surfaces: the azimuth–height form with clustered trapezoid doubling in
+//!    azimuth and Fejér doubling in height, so each finer level reuses every evaluation and
+//!    the estimate (the rate estimate $\delta_2^2/\delta_1$ of the last two changes per
+//!    direction) costs nothing. Measured at $10^{-12}$ for the founding paper's pair it costs
+//!    1.8–2.8 times the cheapest fixed table of equal true error, and 1.0–1.8 times the
+//!    ladder (which stays the default: it is cheaper at every separation measured).
+//!
 //! [`MethodChoice::FixedLevel`] evaluates one table of the ladder, uncertified.
 //!
 //! **Which surface.** The integrand $\Phi_B$ continued into B is singular only on B's focal set
@@ -101,6 +109,7 @@ mod body;
 mod engine;
 mod error;
 mod kernel;
+pub mod nested;
 pub mod overlap;
 pub mod rules;
 

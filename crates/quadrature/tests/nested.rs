@@ -1,0 +1,148 @@
+//! Nested rules: exactness, nesting, and the doubling cubature's estimate against true errors.
+
+use std::f64::consts::{PI, TAU};
+use surfgrav_quadrature::{
+    rate_estimate, Interval, NestedCubature, NestedFejer, NestedLevels, NestedTensorRule,
+    NestedTrapezoid, QuadratureError,
+};
+
+/// Fejér's second rule with n subdivisions integrates x^k exactly for k ≤ n − 2 (n − 1 for
+/// even n); checked against 1e-14 of ∫|x^k| (the weights' rounding, `CONVERGED_RULE_REL`).
+#[test]
+fn fejer_is_exact_for_polynomials_at_every_level() {
+    let rule = NestedFejer::new(3, 5, Interval::new(-1.0, 1.0).unwrap()).unwrap();
+    for level in 0..=5 {
+        let n = 3usize << level;
+        let w = rule.weights(level);
+        let x = &rule.nodes()[..rule.count(level)];
+        assert_eq!(w.len(), n - 1);
+        let degree = if n.is_multiple_of(2) { n - 1 } else { n - 2 };
+        for k in 0..=degree.min(60) {
+            let q: f64 = x.iter().zip(w).map(|(x, w)| w * x.powi(k as i32)).sum();
+            let exact = if k % 2 == 1 {
+                0.0
+            } else {
+                2.0 / (k as f64 + 1.0)
+            };
+            assert!(
+                (q - exact).abs() < 1e-14,
+                "level {level} x^{k}: {q} vs {exact}"
+            );
+        }
+    }
+}
+
+#[test]
+fn fejer_levels_are_nested_and_inside_the_interval() {
+    let rule = NestedFejer::new(5, 4, Interval::new(0.0, 2.5).unwrap()).unwrap();
+    for level in 0..4 {
+        let n = 5usize << level;
+        let direct: Vec<f64> = (1..n)
+            .map(|k| 1.25 + 1.25 * (PI * k as f64 / n as f64).cos())
+            .collect();
+        let mut stored = rule.nodes()[..rule.count(level)].to_vec();
+        stored.sort_by(f64::total_cmp);
+        let mut direct_sorted = direct.clone();
+        direct_sorted.sort_by(f64::total_cmp);
+        for (a, b) in stored.iter().zip(&direct_sorted) {
+            assert!((a - b).abs() <= 4.0 * f64::EPSILON * 2.5);
+        }
+        assert!(stored.iter().all(|&x| x > 0.0 && x < 2.5));
+        let sum: f64 = rule.weights(level).iter().sum();
+        assert!((sum - 2.5).abs() < 1e-14);
+    }
+}
+
+/// The trapezoid levels integrate e^{ikφ} exactly for |k| < N; the half rule gives half the
+/// full integral of an even function (here cos kφ).
+#[test]
+fn trapezoid_levels_are_exact_below_their_count() {
+    for half in [false, true] {
+        let rule = NestedTrapezoid::new(4, 4, 0.0, TAU, half).unwrap();
+        for level in 0..=4 {
+            let n = 4usize << level;
+            let count = rule.count(level);
+            for k in 0..n {
+                let q: f64 = rule.nodes()[..count]
+                    .iter()
+                    .zip(&rule.factors()[..count])
+                    .map(|(&phi, &f)| f * (k as f64 * phi).cos())
+                    .sum::<f64>()
+                    * rule.step(level);
+                let full = if k == 0 { TAU } else { 0.0 };
+                let exact = if half { 0.5 * full } else { full };
+                assert!(
+                    (q - exact).abs() < 1e-13,
+                    "half {half} level {level} k {k}: {q}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn bad_nested_rules_are_errors() {
+    assert!(matches!(
+        NestedTrapezoid::new(3, 2, 0.0, TAU, true),
+        Err(QuadratureError::InvalidNesting { .. })
+    ));
+    assert!(matches!(
+        NestedTrapezoid::new(0, 2, 0.0, TAU, false),
+        Err(QuadratureError::ZeroOrder)
+    ));
+    assert!(NestedFejer::new(1, 2, Interval::new(0.0, 1.0).unwrap()).is_err());
+    assert!(NestedFejer::new(4, 11, Interval::new(0.0, 1.0).unwrap()).is_err());
+    assert_eq!(rate_estimate(1e-3, 1e-6), 1e-9);
+    assert_eq!(rate_estimate(0.0, 0.0), 0.0);
+    assert_eq!(rate_estimate(0.0, 1e-9), f64::INFINITY);
+}
+
+/// ∫₀^{2π}∫₀^1 1/(1 + ε − x cos φ) dx dφ = 2π ∫₀^1 dx / √((1+ε)² − x²) = 2π asin(1/(1+ε)):
+/// near-singular at (φ, x) = (0, 1) for small ε. The estimate bounds the true error for every
+/// ε and tolerance, and the tolerance is met.
+#[test]
+fn cubature_estimate_bounds_the_true_error() {
+    let mut worst: f64 = 0.0;
+    for eps in [1.0f64, 0.1, 1e-2, 1e-3] {
+        let exact = TAU * (1.0 / (1.0 + eps)).asin();
+        for tolerance in [1e-4, 1e-6, 1e-8, 1e-10, 1e-12] {
+            for base in [4usize, 6, 10] {
+                let rule = NestedTensorRule {
+                    periodic: NestedTrapezoid::new(base, 10, 0.0, TAU, false).unwrap(),
+                    across: NestedFejer::new(3, 8, Interval::new(0.0, 1.0).unwrap()).unwrap(),
+                };
+                let mut cubature = NestedCubature::<1>::new();
+                let r = cubature
+                    .integrate(
+                        &rule,
+                        NestedLevels {
+                            periodic: 2,
+                            across: 2,
+                        },
+                        tolerance,
+                        10_000_000,
+                        |k, range, out| {
+                            let x = rule.across.nodes()[k];
+                            for m in range.clone() {
+                                let phi = rule.periodic.nodes()[m];
+                                out[0] += rule.periodic.factors()[m] / (1.0 + eps - x * phi.cos());
+                            }
+                            range.len()
+                        },
+                        |a, b| (a[0] - b[0]).abs() / a[0].abs(),
+                    )
+                    .unwrap();
+                assert!(r.converged, "eps {eps} tol {tolerance}");
+                let err = (r.value[0] - exact).abs() / exact;
+                assert!(r.error_estimate <= tolerance);
+                assert!(
+                    err <= r.error_estimate.max(1e-15),
+                    "eps {eps} tol {tolerance} base {base}: error {err:e} > estimate {:e}",
+                    r.error_estimate
+                );
+                worst = worst.max(err / r.error_estimate.max(1e-15));
+            }
+        }
+    }
+    println!("worst true error / estimate: {worst:.3}");
+}

@@ -1,0 +1,224 @@
+//! The nested (doubling) rule of the engine: the founding paper's azimuth–height form of an
+//! ellipsoid, the clustered trapezoid rule in azimuth under doubling and Fejér's second rule in
+//! height under doubling ([`surfgrav_quadrature::nested`]), so that every finer level reuses
+//! every evaluation of the coarser one and the error estimate costs nothing.
+//!
+//! # Why the azimuth–height form suits Fejér's rule
+//!
+//! On a slice $z$ of the ellipsoid $x = a s\cos\varphi$, $y = b s\sin\varphi$,
+//! $s = \sqrt{1 - z^2/c^2}$, the area vector per $\mathrm d\varphi\,\mathrm dz$ is
+//! $(b s\cos\varphi,\ a s\sin\varphi,\ ab z/c^2)$. Each integrand is a smooth function of
+//! $(s\cos\varphi, s\sin\varphi, z)$ times such a vector, and its azimuthal integral is then a
+//! smooth function of $s^2 = 1 - z^2/c^2$: the square root at the poles cancels once the
+//! azimuth is summed, so the line sums are analytic in $z$ on $[-c, c]$ and Fejér's rule in $z$
+//! converges geometrically. The height range is split at the equator (the rule on $[0, c]$ and
+//! its mirror image), which puts the rule's end clustering where a body in the equatorial
+//! plane comes closest, as the fixed ladder does ([`super::rules`]).
+//!
+//! # Levels and start
+//!
+//! Level $(i, j)$ has $N_0 2^i$ azimuth nodes (over a full turn) and $n_0 2^j - 1$ heights per
+//! half. The bases $N_0$ and $n_0$ are chosen from the ladder's prediction of the nodes the
+//! tolerance needs ([`super::InteractionEngine`]'s start model), so that the coarser levels of
+//! the start grid, $(0, 1)$ and $(1, 0)$, are the predicted sufficient grid: when the
+//! prediction holds, the first grid is both the answer and its certificate.
+
+use super::kernel::{FrameMap, SolidSums};
+use super::rules::CLUSTERING;
+use crate::{Real, Vec3};
+use std::collections::HashMap;
+use std::f64::consts::{PI, TAU};
+use std::ops::Range;
+use std::sync::{Arc, Mutex, OnceLock};
+use surfgrav_potentials::Potential;
+use surfgrav_quadrature::{
+    Interval, NestedFejer, NestedTensorRule, NestedTrapezoid, QuadratureError,
+};
+
+/// Largest azimuth count of the finest level over a full turn.
+pub const MAX_NESTED_AZIMUTH: usize = 8192;
+
+/// Largest subdivision count of the finest height level (heights per half: one less).
+pub const MAX_NESTED_HEIGHTS: usize = 1024;
+
+/// A nested rule with the azimuth's cosines and sines tabulated (built once, shared).
+#[derive(Debug)]
+pub(crate) struct NestedRuleSet {
+    pub(crate) rule: NestedTensorRule,
+    pub(crate) cos: Vec<Real>,
+    pub(crate) sin: Vec<Real>,
+}
+
+/// What identifies a nested rule set: azimuth base, clustering index, half azimuth, height base.
+type RuleKey = (usize, u8, bool, usize);
+
+fn cache() -> &'static Mutex<HashMap<RuleKey, Arc<NestedRuleSet>>> {
+    static CACHE: OnceLock<Mutex<HashMap<RuleKey, Arc<NestedRuleSet>>>> = OnceLock::new();
+    CACHE.get_or_init(|| Mutex::new(HashMap::new()))
+}
+
+/// Rounds a base up to the form $m 2^e$, $m \in \{4, 5, 6, 7\}$ (or 1, 2, 3 below 4), so that few
+/// distinct rules are ever built.
+pub(crate) fn round_base(n: usize) -> usize {
+    if n <= 4 {
+        return n.max(1);
+    }
+    let mut e = 0;
+    while (n >> e) >= 8 {
+        e += 1;
+    }
+    let m = n.div_ceil(1 << e);
+    m << e
+}
+
+/// The shared rule set for these bases (built on first use).
+pub(crate) fn rule_set(
+    azimuth_base: usize,
+    clustering: u8,
+    half_azimuth: bool,
+    height_base: usize,
+) -> Result<Arc<NestedRuleSet>, QuadratureError> {
+    let key = (azimuth_base, clustering, half_azimuth, height_base);
+    if let Ok(map) = cache().lock() {
+        if let Some(set) = map.get(&key) {
+            return Ok(set.clone());
+        }
+    }
+    let mut azimuth_levels = 0;
+    while (azimuth_base << (azimuth_levels + 1)) <= MAX_NESTED_AZIMUTH && azimuth_levels < 10 {
+        azimuth_levels += 1;
+    }
+    let mut height_levels = 0;
+    while (height_base << (height_levels + 1)) <= MAX_NESTED_HEIGHTS && height_levels < 10 {
+        height_levels += 1;
+    }
+    let eps = CLUSTERING[usize::from(clustering).min(CLUSTERING.len() - 1)];
+    // The clustering map of `super::rules`, with ψ ∈ [0, 2π): φ(ψ) = 2 atan(ε tan(ψ/2)).
+    let map = |psi: Real| {
+        let (s, c) = (0.5 * psi).sin_cos();
+        let mut phi = 2.0 * (eps * s).atan2(c);
+        if phi < 0.0 {
+            phi += TAU;
+        }
+        (phi.clamp(0.0, TAU), eps / (c * c + eps * eps * s * s))
+    };
+    let periodic =
+        NestedTrapezoid::with_map(azimuth_base, azimuth_levels, 0.0, TAU, half_azimuth, map)?;
+    let across = NestedFejer::new(height_base, height_levels, Interval::new(0.0, 1.0)?)?;
+    let (sin, cos): (Vec<Real>, Vec<Real>) = periodic
+        .nodes()
+        .iter()
+        .map(|&phi| {
+            // Exact zeros on the mirror planes (φ = 0, π), which the half rules contain.
+            if phi == 0.0 {
+                (0.0, 1.0)
+            } else if phi == PI {
+                (0.0, -1.0)
+            } else {
+                phi.sin_cos()
+            }
+        })
+        .unzip();
+    let set = Arc::new(NestedRuleSet {
+        rule: NestedTensorRule { periodic, across },
+        cos,
+        sin,
+    });
+    if let Ok(mut map) = cache().lock() {
+        if map.len() > 256 {
+            map.clear();
+        }
+        map.insert(key, set.clone());
+    }
+    Ok(set)
+}
+
+/// Components of the nested integrand: $\Phi - \Phi_0$ times $\mathrm d\mathbf S$ (3), times
+/// $\mathbf x\times\mathrm d\mathbf S$ (3), $\tfrac12|\mathbf x|^2\,\mathrm d\mathbf S\times\mathbf a$ (3),
+/// the energy integrand (1), and the magnitudes of the force, torque and energy terms for the
+/// rounding bound (3), as in [`super::kernel`]'s solid loop.
+pub(crate) const COMPONENTS: usize = 13;
+
+/// Adds to `out` the sum over azimuth nodes `range` of height node `k` (and, with `mirror`,
+/// of its mirror image $-z$) of the integrand times the azimuth factor, for an ellipsoid of
+/// semi-axes `axes` in the field of `source` (`reference` its potential at the centroid).
+/// Returns the evaluations spent.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn ellipsoid_line<P: Potential + ?Sized>(
+    set: &NestedRuleSet,
+    axes: [Real; 3],
+    k: usize,
+    range: Range<usize>,
+    mirror: bool,
+    source: &P,
+    map: &FrameMap,
+    reference: Real,
+    out: &mut [Real; COMPONENTS],
+) -> usize {
+    let [a, b, c] = axes;
+    let x = set.rule.across.nodes()[k];
+    let z = c * x;
+    let s = ((1.0 - x) * (1.0 + x)).sqrt();
+    let (a_s, b_s) = (a * s, b * s);
+    // dS per dφ dx (dz = c dx): c (b s cos φ, a s sin φ, ab z / c²).
+    let (nx, ny, nz) = (c * b_s, c * a_s, a * b * x);
+    let factors = &set.rule.periodic.factors()[range.clone()];
+    let cos = &set.cos[range.clone()];
+    let sin = &set.sin[range.clone()];
+    let mut acc = [0.0; COMPONENTS];
+    let mut term = |r: Vec3, w: Vec3| {
+        let field = source.field(&map.apply(&r));
+        let phi = field.potential;
+        let acceleration = map.back(&field.acceleration);
+        let half_x2 = 0.5 * r.norm_squared();
+        let x_cross_w = r.cross(&w);
+        let relative = phi - reference;
+        let (e_potential, e_gradient) = (phi * r.dot(&w), half_x2 * acceleration.dot(&w));
+        let flux = w * relative;
+        let moment = x_cross_w * relative;
+        let gradient = w.cross(&acceleration) * half_x2;
+        acc[0] += flux.x;
+        acc[1] += flux.y;
+        acc[2] += flux.z;
+        acc[3] += moment.x;
+        acc[4] += moment.y;
+        acc[5] += moment.z;
+        acc[6] += gradient.x;
+        acc[7] += gradient.y;
+        acc[8] += gradient.z;
+        acc[9] += e_potential + e_gradient;
+        acc[10] += relative.abs() * w.norm();
+        acc[11] += relative.abs() * x_cross_w.norm();
+        acc[12] += e_potential.abs() + e_gradient.abs();
+    };
+    for ((&f, &cp), &sp) in factors.iter().zip(cos).zip(sin) {
+        let (rx, ry) = (a_s * cp, b_s * sp);
+        let (wx, wy) = (f * nx * cp, f * ny * sp);
+        term(Vec3::new(rx, ry, z), Vec3::new(wx, wy, f * nz));
+        if mirror {
+            term(Vec3::new(rx, ry, -z), Vec3::new(wx, wy, -f * nz));
+        }
+    }
+    for (o, v) in out.iter_mut().zip(acc) {
+        *o += v;
+    }
+    if mirror {
+        2 * range.len()
+    } else {
+        range.len()
+    }
+}
+
+/// The raw sums of a nested value (see [`COMPONENTS`]).
+pub(crate) fn solid_sums_from(v: &[Real; COMPONENTS]) -> SolidSums {
+    SolidSums {
+        potential_flux: Vec3::new(v[0], v[1], v[2]),
+        potential_moment: Vec3::new(v[3], v[4], v[5]),
+        gradient_moment: Vec3::new(v[6], v[7], v[8]),
+        energy_flux: v[9],
+        potential_flux_magnitude: v[10],
+        potential_moment_magnitude: v[11],
+        energy_flux_magnitude: v[12],
+    }
+}
