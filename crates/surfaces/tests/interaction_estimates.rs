@@ -246,3 +246,43 @@ fn nested_evaluation_counts_for_the_paper_pair() {
 }
 
 const NESTED_SNAPSHOT: [usize; 5] = [775, 391, 323, 195, 99];
+
+/// The force-only evaluation ([`InteractionEngine::force`]): its estimate bounds the force's
+/// true error at every tolerance, and where it certifies with the same tables as the full
+/// evaluation its force is the same number.
+#[test]
+fn force_only_estimates_bound_the_true_error() {
+    let mut worst_ratio: f64 = 0.0;
+    for case in cases() {
+        let truth = reference(&case);
+        for tolerance in [1e-4, 1e-6, 1e-8, 1e-10, 1e-12] {
+            let options = InteractionOptions {
+                relative_tolerance: tolerance,
+                ..InteractionOptions::default()
+            };
+            let mut e = engine(options);
+            let f = e
+                .force(&case.a, &case.pose_a, &case.b, &case.pose_b)
+                .unwrap();
+            let full = engine(options)
+                .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
+                .unwrap();
+            let scale = truth.force_on_a.norm();
+            let err = (f.force_on_a - truth.force_on_a).norm() / scale;
+            assert!(f.error_estimate <= tolerance);
+            assert!(f.evaluations <= full.evaluations, "{}", case.label);
+            assert!(
+                err <= f.error_estimate + truth.error_estimate,
+                "{} force only at {tolerance:e}: error {err:e} > estimate {:e}",
+                case.label,
+                f.error_estimate
+            );
+            assert_eq!(f.force_on_b, -f.force_on_a);
+            if f.evaluations == full.evaluations {
+                assert_eq!(f.force_on_a, full.force_on_a, "{}", case.label);
+            }
+            worst_ratio = worst_ratio.max(err / f.error_estimate);
+        }
+    }
+    println!("worst true error / estimate, force only: {worst_ratio:.3}");
+}

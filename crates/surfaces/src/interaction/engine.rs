@@ -3,7 +3,9 @@
 
 use super::body::{Body, BodyShape, SourceField, ALIGNMENT};
 use super::error::{InteractionError, Side};
-use super::kernel::{lamina_sums, solid_sums, FrameMap, LaminaSums, SolidSums};
+use super::kernel::{
+    lamina_sums, solid_force_sums, solid_table_sums, FrameMap, LaminaSums, SolidSums,
+};
 use super::nested::{self as nested_rule, ellipsoid_line, round_base, solid_sums_from};
 use super::overlap::{contact, Contact};
 use super::rules::{
@@ -191,6 +193,25 @@ pub struct Interaction {
     pub level: Option<u16>,
 }
 
+/// The force between two bodies without torques or energy ([`InteractionEngine::force`]);
+/// units and conventions as [`Interaction`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ForceInteraction {
+    /// Force on A.
+    pub force_on_a: Vec3,
+    /// Force on B ($= -$`force_on_a`).
+    pub force_on_b: Vec3,
+    /// How it was computed.
+    pub method: Method,
+    /// The body whose surface was integrated over (`None` for a closed form).
+    pub integrated_over: Option<Side>,
+    /// Potential (field) evaluations spent.
+    pub evaluations: usize,
+    /// Estimated relative error of the force, $|\delta\mathbf F|/|\mathbf F|$ (for the fixed
+    /// rules; other methods report their estimate over all outputs).
+    pub error_estimate: Real,
+}
+
 /// The part of a result that the levels refine.
 #[derive(Debug, Clone, Copy)]
 struct Values {
@@ -202,6 +223,8 @@ struct Values {
     torque_form_gap: Real,
     /// Relative rounding error bound of this evaluation (see [`ROUNDING_PER_TERM`]).
     rounding: Real,
+    /// Only the force was computed (torques and energy are placeholders).
+    force_only: bool,
 }
 
 impl Values {
@@ -209,6 +232,9 @@ impl Values {
         let v = self.potential_energy.abs().max(Real::MIN_POSITIVE);
         let df = (self.force_on_a - other.force_on_a).norm()
             / self.force_on_a.norm().max(Real::MIN_POSITIVE);
+        if self.force_only {
+            return df;
+        }
         let dv = (self.potential_energy - other.potential_energy).abs() / v;
         let dma = (self.torque_on_a - other.torque_on_a).norm() / self.torque_on_a.norm().max(v);
         let dmb = (self.torque_on_b - other.torque_on_b).norm() / self.torque_on_b.norm().max(v);
@@ -216,6 +242,9 @@ impl Values {
     }
 
     fn form_discrepancy(&self, torque_scale: Real) -> Real {
+        if self.force_only {
+            return 0.0;
+        }
         self.torque_form_gap
             / torque_scale
                 .max(self.potential_energy.abs())
@@ -292,6 +321,8 @@ pub struct InteractionEngine {
     adaptive: Option<AdaptiveCubature<10>>,
     /// The nested rule's workspace (line sums), kept.
     nested: NestedCubature<{ nested_rule::COMPONENTS }>,
+    /// Set during [`InteractionEngine::force`]: the fixed rules sum and certify the force only.
+    force_only: bool,
 }
 
 fn check_pose(pose: &Pose, body: Side) -> Result<(), InteractionError> {
@@ -346,12 +377,40 @@ impl InteractionEngine {
             options,
             adaptive: None,
             nested: NestedCubature::new(),
+            force_only: false,
         })
     }
 
     /// The options.
     pub fn options(&self) -> &InteractionOptions {
         &self.options
+    }
+
+    /// The force only, for integrator stages that need nothing else: the fixed rules then
+    /// sum and certify the force alone (the torque and energy terms of the node loop are
+    /// skipped, and only the force must meet the tolerance). Other methods compute everything
+    /// and return the force.
+    ///
+    /// # Errors
+    /// As [`Self::interact`].
+    pub fn force(
+        &mut self,
+        a: &Body,
+        pose_a: &Pose,
+        b: &Body,
+        pose_b: &Pose,
+    ) -> Result<ForceInteraction, InteractionError> {
+        self.force_only = true;
+        let result = self.interact(a, pose_a, b, pose_b);
+        self.force_only = false;
+        result.map(|r| ForceInteraction {
+            force_on_a: r.force_on_a,
+            force_on_b: r.force_on_b,
+            method: r.method,
+            integrated_over: r.integrated_over,
+            evaluations: r.evaluations,
+            error_estimate: r.error_estimate,
+        })
     }
 
     /// Force, torque and energy of A (at `pose_a`) and B (at `pose_b`).
@@ -657,7 +716,7 @@ impl InteractionEngine {
             Side::A => Method::SurfaceOverA,
             Side::B => Method::SurfaceOverB,
         };
-        evaluate_table(x, y, &table, p).finish(
+        evaluate_table(x, y, &table, p, self.force_only).finish(
             method,
             Some(p.side),
             table.len(),
@@ -710,7 +769,7 @@ impl InteractionEngine {
             if p.node_check {
                 check_nodes(&table, y, &p.map)?;
             }
-            let values = evaluate_table(x, y, &table, p);
+            let values = evaluate_table(x, y, &table, p, self.force_only);
             evaluations += cost;
             if let Some(coarse) = previous {
                 let estimate = values
@@ -929,6 +988,7 @@ fn assemble(
         potential_energy: energy,
         torque_form_gap: (m_x - m_x2).norm(),
         rounding: 0.0,
+        force_only: false,
     }
 }
 
@@ -949,6 +1009,12 @@ fn solid_values(mut s: SolidSums, density: Real, p: &Placement) -> Values {
         &r.torque_gradient_form,
         r.potential_energy,
     );
+    if s.potential_moment_magnitude == 0.0 && s.energy_flux_magnitude == 0.0 {
+        // Force only: the force's own rounding.
+        values.rounding = ROUNDING_PER_TERM * density * s.potential_flux_magnitude
+            / values.force_on_a.norm().max(Real::MIN_POSITIVE);
+        return values;
+    }
     values.rounding = relative_from_absolute(
         &values,
         ROUNDING_PER_TERM * density * s.potential_flux_magnitude,
@@ -960,16 +1026,27 @@ fn solid_values(mut s: SolidSums, density: Real, p: &Placement) -> Values {
 }
 
 /// Runs the monomorphised loop for Y's field kind over X's table (dispatch once per table).
-fn evaluate_table(x: &Body, y: &Body, table: &NodeTable, p: &Placement) -> Values {
+fn evaluate_table(
+    x: &Body,
+    y: &Body,
+    table: &NodeTable,
+    p: &Placement,
+    force_only: bool,
+) -> Values {
     match table {
         NodeTable::Solid(t) => {
-            let s = with_field!(&y.field, |f| solid_sums(
-                t.points(),
-                t.weighted_area_vectors(),
-                &t.origin(),
-                f,
-                &p.map
-            ));
+            if force_only {
+                let (flux, size) = with_field!(&y.field, |f| solid_force_sums(t, f, &p.map));
+                let sums = SolidSums {
+                    potential_flux: flux,
+                    potential_flux_magnitude: size,
+                    ..SolidSums::default()
+                };
+                let mut values = solid_values(sums, x.density, p);
+                values.force_only = true;
+                return values;
+            }
+            let s = with_field!(&y.field, |f| solid_table_sums(t, f, &p.map));
             solid_values(s, x.density, p)
         }
         NodeTable::Lamina(t) => {
@@ -1126,6 +1203,7 @@ fn analytic_point(
             potential_energy: energy,
             torque_form_gap: 0.0,
             rounding: 0.0,
+            force_only: false,
         }
     } else {
         Values {
@@ -1135,6 +1213,7 @@ fn analytic_point(
             potential_energy: energy,
             torque_form_gap: 0.0,
             rounding: 0.0,
+            force_only: false,
         }
     };
     values.finish(
@@ -1181,6 +1260,7 @@ fn analytic_disk_pair(
         potential_energy: interaction.potential_energy,
         torque_form_gap: 0.0,
         rounding: 0.0,
+        force_only: false,
     };
     values
         .finish(

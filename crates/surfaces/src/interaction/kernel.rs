@@ -221,6 +221,144 @@ pub(crate) fn solid_sums<P: Potential + ?Sized>(
     }
 }
 
+/// What a solid node table's loop needs per node besides the point and the weighted area
+/// vector $\mathbf W$: constants of the table, computed once when it is built
+/// ($\mathbf x = \mathbf r - \mathbf o$).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct NodeConstants {
+    /// $\mathbf x\times\mathbf W$.
+    moment: Vec3,
+    /// $\tfrac12|\mathbf x|^2$.
+    half_x2: Real,
+    /// $\mathbf x\cdot\mathbf W$.
+    x_dot_w: Real,
+    /// $|\mathbf W|$.
+    w_norm: Real,
+    /// $|\mathbf x\times\mathbf W|$.
+    moment_norm: Real,
+}
+
+/// A solid's node table with its per-node constants (the engine's cached form).
+#[derive(Debug, Clone)]
+pub(crate) struct SolidTable {
+    nodes: SurfaceNodes,
+    constants: Vec<NodeConstants>,
+}
+
+impl SolidTable {
+    pub(crate) fn new(nodes: SurfaceNodes) -> Self {
+        let origin = nodes.origin();
+        let constants = nodes
+            .points()
+            .iter()
+            .zip(nodes.weighted_area_vectors())
+            .map(|(r, w)| {
+                let x = r - origin;
+                let moment = x.cross(w);
+                NodeConstants {
+                    moment,
+                    half_x2: 0.5 * x.norm_squared(),
+                    x_dot_w: x.dot(w),
+                    w_norm: w.norm(),
+                    moment_norm: moment.norm(),
+                }
+            })
+            .collect();
+        Self { nodes, constants }
+    }
+}
+
+impl std::ops::Deref for SolidTable {
+    type Target = SurfaceNodes;
+    fn deref(&self) -> &SurfaceNodes {
+        &self.nodes
+    }
+}
+
+/// [`solid_sums`] over a [`SolidTable`], with the per-node constants read instead of
+/// recomputed (the same sums, term by term).
+#[inline(never)]
+pub(crate) fn solid_table_sums<P: Potential + ?Sized>(
+    table: &SolidTable,
+    source: &P,
+    map: &FrameMap,
+) -> SolidSums {
+    let mut flux = CompensatedSum3::new();
+    let mut moment = CompensatedSum3::new();
+    let mut gradient_moment = CompensatedSum3::new();
+    let mut energy = CompensatedSum::new();
+    let (mut flux_size, mut moment_size, mut energy_size) = (0.0, 0.0, 0.0);
+    let reference = source.potential(&map.apply(&table.nodes.origin()));
+    for ((block_points, block_weights), block_constants) in table
+        .nodes
+        .points()
+        .chunks(BLOCK)
+        .zip(table.nodes.weighted_area_vectors().chunks(BLOCK))
+        .zip(table.constants.chunks(BLOCK))
+    {
+        let mut f = Vec3::zeros();
+        let mut m = Vec3::zeros();
+        let mut g = Vec3::zeros();
+        let mut e = 0.0;
+        for ((r, w), k) in block_points.iter().zip(block_weights).zip(block_constants) {
+            let field = source.field(&map.apply(r));
+            let phi = field.potential;
+            let a = map.back(&field.acceleration);
+            let (e_potential, e_gradient) = (phi * k.x_dot_w, k.half_x2 * a.dot(w));
+            let relative = phi - reference;
+            f += w * relative;
+            m += k.moment * relative;
+            g += w.cross(&a) * k.half_x2;
+            e += e_potential + e_gradient;
+            flux_size += relative.abs() * k.w_norm;
+            moment_size += relative.abs() * k.moment_norm;
+            energy_size += e_potential.abs() + e_gradient.abs();
+        }
+        flux.add(&f);
+        moment.add(&m);
+        gradient_moment.add(&g);
+        energy.add(e);
+    }
+    SolidSums {
+        potential_flux: flux.value(),
+        potential_moment: moment.value(),
+        gradient_moment: gradient_moment.value(),
+        energy_flux: energy.value(),
+        potential_flux_magnitude: flux_size,
+        potential_moment_magnitude: moment_size,
+        energy_flux_magnitude: energy_size,
+    }
+}
+
+/// The force part of [`solid_table_sums`] alone: $\sum_k(\Phi_k - \Phi_0)\mathbf W_k$ and the
+/// size of its terms.
+#[inline(never)]
+pub(crate) fn solid_force_sums<P: Potential + ?Sized>(
+    table: &SolidTable,
+    source: &P,
+    map: &FrameMap,
+) -> (Vec3, Real) {
+    let mut flux = CompensatedSum3::new();
+    let mut size = 0.0;
+    let reference = source.potential(&map.apply(&table.nodes.origin()));
+    for ((block_points, block_weights), block_constants) in table
+        .nodes
+        .points()
+        .chunks(BLOCK)
+        .zip(table.nodes.weighted_area_vectors().chunks(BLOCK))
+        .zip(table.constants.chunks(BLOCK))
+    {
+        let mut f = Vec3::zeros();
+        for ((r, w), k) in block_points.iter().zip(block_weights).zip(block_constants) {
+            let relative = source.potential(&map.apply(r)) - reference;
+            f += w * relative;
+            size += relative.abs() * k.w_norm;
+        }
+        flux.add(&f);
+    }
+    (flux.value(), size)
+}
+
 /// Force, torque (both forms) and energy of a homogeneous solid of density `density` whose
 /// closed surface is tabulated by `nodes`, in the field of `source`; `map` takes the table's
 /// frame into the source's body frame. Results are in the table's frame, torques about the

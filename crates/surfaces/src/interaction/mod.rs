@@ -115,8 +115,8 @@ pub mod rules;
 
 pub use body::{Body, BodyShape};
 pub use engine::{
-    Interaction, InteractionEngine, InteractionOptions, Method, MethodChoice, SurfaceChoice,
-    ANALYTIC_RELATIVE_ERROR, ROUNDING_PER_TERM,
+    ForceInteraction, Interaction, InteractionEngine, InteractionOptions, Method, MethodChoice,
+    SurfaceChoice, ANALYTIC_RELATIVE_ERROR, ROUNDING_PER_TERM,
 };
 pub use error::{InteractionError, Side};
 pub use kernel::{

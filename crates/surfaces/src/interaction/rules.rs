@@ -50,6 +50,7 @@
 
 use super::body::BodyShape;
 use super::error::InteractionError;
+use super::kernel::SolidTable;
 use crate::{Ellipsoid, Interval, LaminaNodes, Real, Rule1d, Surface, SurfaceNodes};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::sync::Arc;
@@ -131,7 +132,7 @@ pub(crate) struct TableKey {
 /// A node table of either kind, shared.
 #[derive(Debug, Clone)]
 pub(crate) enum NodeTable {
-    Solid(Arc<SurfaceNodes>),
+    Solid(Arc<SolidTable>),
     Lamina(Arc<LaminaNodes>),
 }
 
@@ -209,12 +210,9 @@ pub(crate) fn build_table(shape: &BodyShape, key: TableKey) -> Result<NodeTable,
     let (phi, w_phi) = azimuth_rule(n_azimuth, eps, key.half_azimuth);
     let azimuth = Rule1d::new(&phi, &w_phi, Interval::FULL_TURN)?;
     match shape {
-        BodyShape::Solid(e) => Ok(NodeTable::Solid(Arc::new(ellipsoid_table(
-            e,
-            key,
-            azimuth,
-            n_transverse,
-        )?))),
+        BodyShape::Solid(e) => Ok(NodeTable::Solid(Arc::new(SolidTable::new(
+            ellipsoid_table(e, key, azimuth, n_transverse)?,
+        )))),
         BodyShape::Disk(lamina) => {
             let radial = gauss(n_transverse, 0.0, lamina.radius())?;
             let radial_rule = Rule1d::new(
@@ -228,11 +226,9 @@ pub(crate) fn build_table(shape: &BodyShape, key: TableKey) -> Result<NodeTable,
                 azimuth,
             )?)))
         }
-        BodyShape::Surface(surface) => Ok(NodeTable::Solid(Arc::new(surface_table(
-            surface.as_ref(),
-            azimuth,
-            n_transverse,
-        )?))),
+        BodyShape::Surface(surface) => Ok(NodeTable::Solid(Arc::new(SolidTable::new(
+            surface_table(surface.as_ref(), azimuth, n_transverse)?,
+        )))),
         BodyShape::Point | BodyShape::FieldOnly => Err(InteractionError::NoSurface {
             reason: "a node table was requested for a body without a surface",
         }),
