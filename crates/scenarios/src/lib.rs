@@ -3,6 +3,7 @@
 //! The binary's commands live in [`cli`]; body specifications (`sphere:radius=1,mass=1`) in
 //! [`spec`].
 
+pub mod bench;
 pub mod cli;
 pub mod figures;
 pub mod output;

@@ -65,7 +65,8 @@ const AXIS_TITLE_SIZE: f64 = 18.0;
 const TICK_SIZE: f64 = 15.0;
 const LEGEND_SIZE: f64 = 16.0;
 
-/// Okabe–Ito palette reordered for a white background (yellow last).
+/// Okabe–Ito palette reordered for a white background; its yellow, too pale on white, is
+/// replaced by grey.
 const PALETTE: [RGBColor; 8] = [
     RGBColor(0, 114, 178),   // blue
     RGBColor(213, 94, 0),    // vermillion
@@ -74,18 +75,21 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(230, 159, 0),   // orange
     RGBColor(86, 180, 233),  // sky blue
     RGBColor(0, 0, 0),       // black
-    RGBColor(240, 228, 66),  // yellow
+    RGBColor(128, 128, 128), // grey
 ];
 
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Style {
-    /// Solid line through the points in order.
+    /// Solid line through the points in order (a series of a single point gets a dot, so
+    /// that it is seen).
     Line,
-    /// Dashed line through the points in order.
+    /// Dashed line through the points in order (a single point gets a dot).
     Dashed,
     /// A filled dot at each point.
     Points,
+    /// Solid line through the points with a dot at each (measured settings of a sweep).
+    LinePoints,
 }
 
 /// One named curve (colour chosen by its index in the panel, from a colour-blind-safe palette).
@@ -923,6 +927,7 @@ struct LegendEntry {
 #[derive(Clone, Copy)]
 enum LegendKind {
     Line,
+    LinePoints,
     Dashed,
     Points,
     Circle,
@@ -945,6 +950,7 @@ fn legend_entries(p: &PreparedLines) -> Vec<LegendEntry> {
                     Style::Line => LegendKind::Line,
                     Style::Dashed => LegendKind::Dashed,
                     Style::Points => LegendKind::Points,
+                    Style::LinePoints => LegendKind::LinePoints,
                 },
             });
         }
@@ -1001,6 +1007,19 @@ fn draw_legend<DB: DrawingBackend>(
                     style,
                 ))
                 .map_err(err)?,
+            LegendKind::LinePoints => {
+                area.draw(&PathElement::new(
+                    vec![(x0, y), (x0 + LEGEND_SAMPLE, y)],
+                    style,
+                ))
+                .map_err(err)?;
+                area.draw(&plotters::element::Circle::new(
+                    (x0 + LEGEND_SAMPLE / 2, y),
+                    3,
+                    style.filled(),
+                ))
+                .map_err(err)?;
+            }
             LegendKind::Dashed | LegendKind::Circle => {
                 let style = if matches!(e.kind, LegendKind::Circle) {
                     ShapeStyle::from(e.colour).stroke_width(1)
@@ -1167,13 +1186,19 @@ fn draw_lines<DB: DrawingBackend>(
             thin(&shifted, pixels_per_unit, pw as usize)
         };
         let pts = thinned.iter().copied();
+        let dot = |c: (f64, f64)| plotters::element::Circle::new(c, 3, colour.filled());
+        if *style == Style::LinePoints || (thinned.len() == 1 && *style != Style::Points) {
+            chart
+                .draw_series(shifted_points(points, x_off, y_off).map(dot))
+                .map_err(err)?;
+        }
         match style {
-            Style::Line if target == Target::Svg => {
+            Style::Line | Style::LinePoints if target == Target::Svg => {
                 chart
                     .draw_series(LineSeries::new(pts, colour.stroke_width(2)))
                     .map_err(err)?;
             }
-            Style::Line => {
+            Style::Line | Style::LinePoints => {
                 let line = colour.stroke_width(2);
                 chart
                     .draw_series(
@@ -1189,9 +1214,7 @@ fn draw_lines<DB: DrawingBackend>(
                     .map_err(err)?;
             }
             Style::Points => {
-                chart
-                    .draw_series(pts.map(|c| plotters::element::Circle::new(c, 3, colour.filled())))
-                    .map_err(err)?;
+                chart.draw_series(pts.map(dot)).map_err(err)?;
             }
         }
     }
@@ -1252,6 +1275,14 @@ impl Ranged for KeyCoord {
     fn range(&self) -> Range<f64> {
         self.lo..self.hi
     }
+}
+
+fn shifted_points(
+    points: &[(f64, f64)],
+    x_off: f64,
+    y_off: f64,
+) -> impl Iterator<Item = (f64, f64)> + '_ {
+    points.iter().map(move |&(x, y)| (x - x_off, y - y_off))
 }
 
 /// Drops points that cannot change the picture: for x-sorted series longer than four points per

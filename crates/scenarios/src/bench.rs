@@ -1,0 +1,1553 @@
+//! `surfgrav bench`: work–precision of the interaction engine and of the integrators, and the
+//! measured speed-up over the founding paper's method.
+//!
+//! [`run_bench`] writes into an output folder:
+//!
+//! | file | what |
+//! |---|---|
+//! | `interaction.md`, `interaction.csv` | (a) the paper's pair (oblate spheroids a = 1, c = 0.25, m = 1, G = 1, common equatorial plane, B on A's x axis) at separations 2.1, 2.55, 3, 7, 30: for every rule and parametrisation of the engine, evaluations, time per evaluation, relative errors of the force and of the energy |
+//! | `interaction_force.png/.svg`, `interaction_energy.png/.svg` | the same, error against time per evaluation, log–log, one panel per separation, with the paper's method as one point |
+//! | `dynamics.md`, `dynamics.csv` | (b) paper-2s and (c) paper-2d over t = 0 … 300: for every integrator over a range of steps or tolerances, steps, force evaluations, wall time, energy error and trajectory error |
+//! | `paper_2s.png/.svg`, `paper_2d.png/.svg` | energy error and trajectory error against wall time, log–log |
+//! | `speedup.md`, `speedup.csv` | time of the paper's method (scipy `dblquad` + RK4, `tools/paper_baseline/`) over surfgrav's for the same task |
+//!
+//! # Errors, and against what
+//!
+//! * Interaction (a): the relative error of the force is $\lVert F - F_\mathrm{ref}\rVert /
+//!   \lVert F_\mathrm{ref}\rVert$ and of the energy $|U - U_\mathrm{ref}| / |U_\mathrm{ref}|$,
+//!   against `tests/reference/interactions.json`: an independent volume integration (by
+//!   `tests/reference/interactions.py`) with an estimated relative accuracy of about
+//!   $2\times10^{-16}$. Not against the engine itself.
+//! * Dynamics (b, c): the energy error is $\max_k |E_k - E_0| / |E_0|$ over every accepted
+//!   step (the total energy with the same model the run used), the trajectory error is
+//!   $\lVert \mathbf r(t_\mathrm{end}) - \mathbf r_\mathrm{ref}(t_\mathrm{end}) \rVert$ for the
+//!   relative position $\mathbf r = \mathbf R_B - \mathbf R_A$ (length units), against a DOP853
+//!   run at relative and absolute tolerance $10^{-14}$ with the same model (so it measures the
+//!   integrator; the model's own error is (a)'s).
+//! * Errors below [`ERROR_FLOOR`] = $10^{-17}$ are reported as $10^{-17}$: below the
+//!   references' own accuracy they carry no information, and a log axis needs a positive value.
+//!
+//! # Models of the runs
+//!
+//! paper-2s runs with the tabulated central pair (`SceneModel`, the fast path: $V(r)$
+//! tabulated once from the engine, forces from its exact derivative; the table's build time is
+//! reported and counted in the speed-up) for every integrator, and with the direct surface
+//! integral at every force evaluation (`EngineModel`, engine tolerance $10^{-12}$) for the
+//! paper's own setting (RK4, Δt = 0.1) and a few adaptive runs. paper-2d runs with the direct
+//! model, which for two coplanar disks is Conway's closed form.
+//!
+//! # Times
+//!
+//! Wall-clock, one thread. A time per interaction is the best of several batches (each at
+//! least [`BenchOptions::min_batch_seconds`]) of repeated calls with the body tables already
+//! built (a run reuses them). The machine is shared: expect ±30 %.
+//!
+//! # The baseline
+//!
+//! `tools/paper_baseline/baseline.json` (compiled in) holds the paper's method timed on this
+//! kind of machine: seconds per force evaluation at each separation, per RK4 step of a
+//! shortened paper-2s run (t = 0 … 3), and a measured whole paper-2s run. With
+//! [`BenchOptions::rerun_baseline`], and when `python3` with scipy is found, the script is run
+//! again in the same sitting (`--quick --json` in quick mode, `--json --no-full-run` otherwise,
+//! so the whole-run figure stays the committed one); otherwise the committed JSON is used and
+//! the report says so.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use serde_json::Value;
+use surfgrav_dynamics::{
+    BodyState, ConservationMonitor, EngineModel, IntegratorKind, InteractionModel, Sample,
+    SceneModel, SceneSettings, Termination, TwoBodyState,
+};
+use surfgrav_potentials::{Pose, Spheroid, UniformDisk, Vec3};
+use surfgrav_surfaces::interaction::{
+    Body, Interaction, InteractionEngine, InteractionError, InteractionOptions, MethodChoice,
+    Parametrisation,
+};
+
+use crate::plot::{write_figure, Figure, LinePanel, Panel, PlotError, Series, Style};
+
+/// Errors below this are reported as this (see the module docs).
+pub const ERROR_FLOOR: f64 = 1e-17;
+
+/// The separations of (a), in units of the equatorial radius.
+pub const SEPARATIONS: [f64; 5] = [2.1, 2.55, 3.0, 7.0, 30.0];
+
+/// End time of the paper's runs.
+pub const PAPER_T_END: f64 = 300.0;
+
+/// Tolerance of the reference runs of (b) and (c).
+pub const REFERENCE_TOLERANCE: f64 = 1e-14;
+
+/// Runs shorter than 0.2 s are timed this many more times (best kept).
+const REPEATS_OF_SHORT_RUNS: usize = 3;
+
+const REFERENCE_JSON: &str = include_str!("../../../tests/reference/interactions.json");
+const BASELINE_JSON: &str = include_str!("../../../tools/paper_baseline/baseline.json");
+const BASELINE_SCRIPT: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../tools/paper_baseline/paper_method.py"
+);
+
+/// What to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BenchOptions {
+    /// Output folder (created if missing).
+    pub out: PathBuf,
+    /// Small sweeps and short timing batches: every file is written, in seconds.
+    pub quick: bool,
+    /// Run the baseline script again (needs `python3` with scipy); otherwise, or when it
+    /// cannot run, the committed `baseline.json` is used.
+    pub rerun_baseline: bool,
+    /// Python interpreter for the baseline (default `python3`).
+    pub python: String,
+    /// Least duration of one timing batch in seconds (default 0.02; quick 0.002).
+    pub min_batch_seconds: f64,
+}
+
+impl BenchOptions {
+    /// Defaults for an output folder: full sweeps, committed baseline.
+    pub fn new(out: impl Into<PathBuf>) -> Self {
+        Self {
+            out: out.into(),
+            quick: false,
+            rerun_baseline: false,
+            python: "python3".into(),
+            min_batch_seconds: 0.02,
+        }
+    }
+
+    /// Quick mode (small sweeps, 2 ms batches).
+    pub fn quick(mut self) -> Self {
+        self.quick = true;
+        self.min_batch_seconds = 0.002;
+        self
+    }
+}
+
+/// Why the bench stopped.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum BenchError {
+    /// Writing an output file failed.
+    #[error("cannot write {path}: {source}")]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A figure could not be drawn.
+    #[error(transparent)]
+    Plot(#[from] PlotError),
+    /// The engine failed where a result was required.
+    #[error("interaction engine, {context}: {message}")]
+    Engine {
+        /// What was being computed.
+        context: String,
+        /// The engine's message.
+        message: String,
+    },
+    /// A run or a model failed where a result was required.
+    #[error("dynamics, {context}: {message}")]
+    Dynamics {
+        /// What was being computed.
+        context: String,
+        /// The message.
+        message: String,
+    },
+    /// The compiled-in reference or baseline data lack something.
+    #[error("data: {0}")]
+    Data(String),
+}
+
+/// One rule at one setting at one separation (part a).
+#[derive(Debug, Clone, PartialEq)]
+pub struct InteractionRow {
+    /// Centroid separation.
+    pub separation: f64,
+    /// Rule family, e.g. "AH single table" (AH: azimuth–height, the paper's (φ, z); PA:
+    /// polar angle–azimuth).
+    pub family: String,
+    /// Its setting, e.g. "t = 8" or "tol 1e-9".
+    pub setting: String,
+    /// Potential evaluations per interaction.
+    pub evaluations: usize,
+    /// Seconds per interaction (force, torques and energy).
+    pub seconds: f64,
+    /// Relative force error against the reference (floored at [`ERROR_FLOOR`]).
+    pub force_error: f64,
+    /// Relative energy error against the reference (floored).
+    pub energy_error: f64,
+    /// The engine's own relative error estimate (∞ for single tables).
+    pub error_estimate: f64,
+    /// False when the engine reported that the tolerance was not met (its best result is used).
+    pub converged: bool,
+}
+
+/// One integrator at one setting on one scene (parts b, c).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicsRow {
+    /// `paper-2s` or `paper-2d`.
+    pub scene: String,
+    /// Model: "interpolant", "direct engine" or "closed form (disks)".
+    pub model: String,
+    /// Integrator name (`rk4`, …).
+    pub integrator: String,
+    /// "dt = 0.1" or "tol 1e-10".
+    pub setting: String,
+    /// End time of the run.
+    pub t_end: f64,
+    /// Accepted steps.
+    pub steps: usize,
+    /// Force evaluations.
+    pub force_evaluations: usize,
+    /// Wall time of the integration (seconds), without the diagnostics.
+    pub wall_seconds: f64,
+    /// max |E − E0| / |E0| (floored), `None` if the run did not complete.
+    pub energy_error: Option<f64>,
+    /// |r(t_end) − r_ref(t_end)| (floored), `None` without a reference or a complete run.
+    pub trajectory_error: Option<f64>,
+    /// "completed" or what stopped it.
+    pub termination: String,
+}
+
+/// One measured speed-up.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Speedup {
+    /// The task.
+    pub task: String,
+    /// The paper's method's seconds.
+    pub baseline_seconds: f64,
+    /// surfgrav's seconds.
+    pub surfgrav_seconds: f64,
+    /// baseline / surfgrav.
+    pub ratio: f64,
+    /// Accuracy of each and where the numbers come from.
+    pub note: String,
+}
+
+/// What the bench measured and wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BenchReport {
+    /// Part (a).
+    pub interaction: Vec<InteractionRow>,
+    /// Parts (b) and (c).
+    pub dynamics: Vec<DynamicsRow>,
+    /// Speed-ups over the paper's method.
+    pub speedups: Vec<Speedup>,
+    /// Where the baseline figures come from (committed file and its date, or this sitting).
+    pub baseline_source: String,
+    /// Every file written.
+    pub files: Vec<PathBuf>,
+}
+
+/// Runs the bench and writes its files into `options.out`. `progress` receives one line per
+/// step of the work (for a terminal or a log).
+pub fn run_bench(
+    options: &BenchOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<BenchReport, BenchError> {
+    std::fs::create_dir_all(&options.out).map_err(|source| BenchError::Io {
+        path: options.out.clone(),
+        source,
+    })?;
+    let (baseline, baseline_source) = load_baseline(options, progress)?;
+    progress(&format!("baseline: {baseline_source}"));
+
+    let interaction = interaction_bench(options, progress)?;
+    let mut dynamics = Vec::new();
+    let two_s = paper_2s(options, progress)?;
+    dynamics.extend(two_s.rows);
+    let two_d = paper_2d(options, progress)?;
+    dynamics.extend(two_d.rows);
+
+    let speedups = speedups(
+        &baseline,
+        &interaction,
+        &dynamics,
+        two_s.table_seconds,
+        two_s.reference_final,
+    );
+    for s in &speedups {
+        progress(&format!(
+            "speed-up {}: {:.3e} s / {:.3e} s = {:.0}x ({})",
+            s.task, s.baseline_seconds, s.surfgrav_seconds, s.ratio, s.note
+        ));
+    }
+
+    let mut files = Vec::new();
+    let out = &options.out;
+    files.push(write_text(
+        &out.join("interaction.md"),
+        &interaction_markdown(&interaction, &baseline),
+    )?);
+    files.push(write_text(
+        &out.join("interaction.csv"),
+        &interaction_csv(&interaction),
+    )?);
+    files.push(write_text(
+        &out.join("dynamics.md"),
+        &dynamics_markdown(&dynamics, two_s.table_seconds),
+    )?);
+    files.push(write_text(
+        &out.join("dynamics.csv"),
+        &dynamics_csv(&dynamics),
+    )?);
+    files.push(write_text(
+        &out.join("speedup.md"),
+        &speedup_markdown(&speedups, &baseline_source),
+    )?);
+    files.push(write_text(
+        &out.join("speedup.csv"),
+        &speedup_csv(&speedups),
+    )?);
+    for (stem, figure) in [
+        (
+            "interaction_force",
+            interaction_figure(&interaction, &baseline, true),
+        ),
+        (
+            "interaction_energy",
+            interaction_figure(&interaction, &baseline, false),
+        ),
+        (
+            "paper_2s",
+            dynamics_figure(
+                &dynamics,
+                "paper-2s",
+                baseline_run_point(&baseline, two_s.reference_final),
+            ),
+        ),
+        ("paper_2d", dynamics_figure(&dynamics, "paper-2d", None)),
+    ] {
+        files.extend(write_figure(&figure, &out.join(stem))?);
+    }
+    for f in &files {
+        progress(&format!("wrote {}", f.display()));
+    }
+    Ok(BenchReport {
+        interaction,
+        dynamics,
+        speedups,
+        baseline_source,
+        files,
+    })
+}
+
+fn write_text(path: &Path, text: &str) -> Result<PathBuf, BenchError> {
+    std::fs::write(path, text).map_err(|source| BenchError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Ok(path.to_path_buf())
+}
+
+fn floored(e: f64) -> f64 {
+    if e.is_finite() {
+        e.max(ERROR_FLOOR)
+    } else {
+        e
+    }
+}
+
+/// Best time per call in seconds: batches of at least `min_batch` seconds, best of `batches`.
+fn time_per_call(min_batch: f64, batches: usize, mut f: impl FnMut()) -> f64 {
+    let mut reps = 1usize;
+    loop {
+        let t = Instant::now();
+        for _ in 0..reps {
+            f();
+        }
+        let elapsed = t.elapsed().as_secs_f64();
+        if elapsed >= min_batch || reps >= 1 << 24 {
+            if batches <= 1 {
+                return elapsed / reps as f64;
+            }
+            break;
+        }
+        reps *= 2;
+    }
+    (0..batches)
+        .map(|_| {
+            let t = Instant::now();
+            for _ in 0..reps {
+                f();
+            }
+            t.elapsed().as_secs_f64() / reps as f64
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+// ---------------------------------------------------------------------------------------------
+// (a) The interaction engine.
+
+struct Reference {
+    force: Vec3,
+    energy: f64,
+}
+
+fn number(v: &Value) -> Option<f64> {
+    match v {
+        Value::String(s) => s.parse().ok(),
+        Value::Number(n) => n.as_f64(),
+        _ => None,
+    }
+}
+
+fn vector(v: &Value) -> Option<Vec3> {
+    let a = v.as_array()?;
+    if a.len() != 3 {
+        return None;
+    }
+    Some(Vec3::new(number(&a[0])?, number(&a[1])?, number(&a[2])?))
+}
+
+/// The reference for the paper's pair at separation `d` (B on A's x axis, no rotations).
+fn paper_pair_reference(root: &Value, d: f64) -> Option<Reference> {
+    let is_paper = |body: &Value| {
+        body["kind"] == "spheroid"
+            && number(&body["equatorial_radius"]) == Some(1.0)
+            && number(&body["polar_radius"]) == Some(0.25)
+            && number(&body["mass"]) == Some(1.0)
+    };
+    root["cases"].as_array()?.iter().find_map(|case| {
+        let unrotated = vector(&case["rotation_a"])? == Vec3::zeros()
+            && vector(&case["rotation_b"])? == Vec3::zeros();
+        (is_paper(&case["a"])
+            && is_paper(&case["b"])
+            && number(&case["g"]) == Some(1.0)
+            && vector(&case["position_b"])? == Vec3::new(d, 0.0, 0.0)
+            && unrotated)
+            .then(|| {
+                Some(Reference {
+                    force: vector(&case["force_on_a"])?,
+                    energy: number(&case["potential_energy"])?,
+                })
+            })
+            .flatten()
+    })
+}
+
+/// The paper's body: oblate spheroid a = 1, c = 0.25, m = 1.
+fn paper_spheroid() -> Result<Body, BenchError> {
+    let s = Spheroid::new(1.0, 0.25, 1.0).map_err(|e| BenchError::Data(e.to_string()))?;
+    Body::spheroid(s).map_err(|e| engine_error("paper spheroid", e))
+}
+
+fn paper_disk() -> Result<Body, BenchError> {
+    let d = UniformDisk::new(1.0, 1.0).map_err(|e| BenchError::Data(e.to_string()))?;
+    Body::disk(d).map_err(|e| engine_error("paper disk", e))
+}
+
+fn engine_error(context: &str, e: impl std::fmt::Display) -> BenchError {
+    BenchError::Engine {
+        context: context.to_string(),
+        message: e.to_string(),
+    }
+}
+
+/// Every rule and parametrisation the engine offers, at a few settings each.
+fn rule_variants(quick: bool) -> Vec<(String, String, InteractionOptions)> {
+    let mut out = Vec::new();
+    let levels: &[u16] = if quick {
+        &[4, 10]
+    } else {
+        &[2, 4, 6, 8, 10, 13, 16, 20]
+    };
+    let tolerances: &[f64] = if quick { &[1e-9] } else { &[1e-6, 1e-9, 1e-12] };
+    for (name, parametrisation) in [
+        ("AH", Parametrisation::AzimuthHeight),
+        ("PA", Parametrisation::PolarAzimuth),
+    ] {
+        for &t in levels {
+            out.push((
+                format!("{name} single table"),
+                format!("t = {t}"),
+                InteractionOptions {
+                    method: MethodChoice::FixedLevel(t),
+                    parametrisation,
+                    ..Default::default()
+                },
+            ));
+        }
+        for &tol in tolerances {
+            out.push((
+                format!("{name} ladder"),
+                format!("tol {tol:.0e}"),
+                InteractionOptions {
+                    method: MethodChoice::FixedRules,
+                    relative_tolerance: tol,
+                    parametrisation,
+                    ..Default::default()
+                },
+            ));
+        }
+    }
+    for &tol in tolerances {
+        out.push((
+            "nested doubling (AH)".into(),
+            format!("tol {tol:.0e}"),
+            InteractionOptions {
+                method: MethodChoice::Nested,
+                relative_tolerance: tol,
+                ..Default::default()
+            },
+        ));
+    }
+    for &tol in tolerances {
+        out.push((
+            "adaptive".into(),
+            format!("tol {tol:.0e}"),
+            InteractionOptions {
+                method: MethodChoice::Adaptive,
+                relative_tolerance: tol,
+                ..Default::default()
+            },
+        ));
+    }
+    out
+}
+
+fn interact_once(
+    engine: &mut InteractionEngine,
+    a: &Body,
+    b: &Body,
+    pose_b: &Pose,
+) -> Result<(Interaction, bool), InteractionError> {
+    match engine.interact(a, &Pose::identity(), b, pose_b) {
+        Ok(r) => Ok((r, true)),
+        Err(InteractionError::ToleranceNotMet { best, .. }) => Ok((*best, false)),
+        Err(e) => Err(e),
+    }
+}
+
+fn interaction_bench(
+    options: &BenchOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Vec<InteractionRow>, BenchError> {
+    let root: Value = serde_json::from_str(REFERENCE_JSON)
+        .map_err(|e| BenchError::Data(format!("tests/reference/interactions.json: {e}")))?;
+    let a = paper_spheroid()?;
+    let b = paper_spheroid()?;
+    let batches = if options.quick { 1 } else { 5 };
+    let mut rows = Vec::new();
+    for d in SEPARATIONS {
+        let reference = paper_pair_reference(&root, d).ok_or_else(|| {
+            BenchError::Data(format!(
+                "tests/reference/interactions.json has no paper-pair case at separation {d}"
+            ))
+        })?;
+        let pose_b = Pose::new(Vec3::new(d, 0.0, 0.0), Vec3::zeros());
+        for (family, setting, engine_options) in rule_variants(options.quick) {
+            let context = format!("separation {d}, {family} {setting}");
+            let mut engine =
+                InteractionEngine::new(engine_options).map_err(|e| engine_error(&context, e))?;
+            let (result, converged) = interact_once(&mut engine, &a, &b, &pose_b)
+                .map_err(|e| engine_error(&context, e))?;
+            let seconds = time_per_call(options.min_batch_seconds, batches, || {
+                let _ = std::hint::black_box(interact_once(&mut engine, &a, &b, &pose_b));
+            });
+            let force_error = (result.force_on_a - reference.force).norm() / reference.force.norm();
+            let energy_error =
+                ((result.potential_energy - reference.energy) / reference.energy).abs();
+            if !force_error.is_finite() || !energy_error.is_finite() {
+                return Err(engine_error(&context, "non-finite result"));
+            }
+            let row = InteractionRow {
+                separation: d,
+                family,
+                setting,
+                evaluations: result.evaluations,
+                seconds,
+                force_error: floored(force_error),
+                energy_error: floored(energy_error),
+                error_estimate: result.error_estimate,
+                converged,
+            };
+            progress(&format!(
+                "(a) d = {d}: {} {}: {} evaluations, {:.1} µs, force error {:.1e}, energy error {:.1e}",
+                row.family,
+                row.setting,
+                row.evaluations,
+                row.seconds * 1e6,
+                row.force_error,
+                row.energy_error
+            ));
+            rows.push(row);
+        }
+    }
+    Ok(rows)
+}
+
+// ---------------------------------------------------------------------------------------------
+// (b), (c) The integrators.
+
+/// The paper's initial state: A at (−3.5, 0, 0) moving (0, 0.2, 0), B mirrored.
+pub fn paper_initial_state() -> TwoBodyState {
+    TwoBodyState::new(
+        BodyState::new(Vec3::new(-3.5, 0.0, 0.0), Vec3::new(0.0, 0.2, 0.0)),
+        BodyState::new(Vec3::new(3.5, 0.0, 0.0), Vec3::new(0.0, -0.2, 0.0)),
+    )
+}
+
+/// The settings swept for one integrator (steps for fixed-step kinds, tolerances otherwise).
+fn sweep(kind: IntegratorKind, paper_step: f64, quick: bool) -> Vec<f64> {
+    if kind.is_adaptive() {
+        return if quick {
+            vec![1e-8, 1e-11]
+        } else if kind == IntegratorKind::Dopri5 {
+            vec![1e-6, 1e-8, 1e-10, 1e-12]
+        } else {
+            vec![1e-6, 1e-8, 1e-10, 1e-12, 1e-13]
+        };
+    }
+    // Steps as multiples of the paper's step, larger for higher orders (same work range).
+    let factors: &[f64] = match kind {
+        IntegratorKind::Leapfrog => &[1.0, 0.5, 0.25, 0.125, 0.0625],
+        IntegratorKind::Rk4 | IntegratorKind::Yoshida4 => &[2.0, 1.0, 0.5, 0.25, 0.125],
+        IntegratorKind::Yoshida6 => &[4.0, 2.0, 1.0, 0.5, 0.25],
+        _ => &[8.0, 4.0, 2.0, 1.0, 0.5],
+    };
+    let factors = if quick { &factors[1..3] } else { factors };
+    factors.iter().map(|f| f * paper_step).collect()
+}
+
+struct RunOutcome {
+    row: DynamicsRow,
+    final_relative: Option<Vec3>,
+}
+
+/// A scene with the model it runs on.
+#[derive(Clone, Copy)]
+struct SceneRun<'m> {
+    scene: &'m str,
+    model_name: &'m str,
+    model: &'m dyn InteractionModel,
+}
+
+/// Runs one integrator, timing the integration alone; energies are evaluated afterwards from
+/// the stored samples.
+fn run_one(
+    run: SceneRun<'_>,
+    kind: IntegratorKind,
+    setting: f64,
+    t_end: f64,
+    reference: Option<Vec3>,
+) -> Result<RunOutcome, BenchError> {
+    let SceneRun {
+        scene,
+        model_name,
+        model,
+    } = run;
+    let (step, tolerance) = if kind.is_adaptive() {
+        (1.0, setting)
+    } else {
+        (setting, 1.0)
+    };
+    let setting_text = if kind.is_adaptive() {
+        format!("tol {setting:.0e}")
+    } else {
+        format!("dt = {setting}")
+    };
+    let context = format!("{scene}, {model_name}, {} {setting_text}", kind.name());
+    let mut integrator = kind
+        .build(step, tolerance)
+        .map_err(|e| BenchError::Dynamics {
+            context: context.clone(),
+            message: e.to_string(),
+        })?;
+    let initial = paper_initial_state();
+    let mut samples: Vec<Sample> = Vec::new();
+    let start = Instant::now();
+    let result = integrator.integrate(model, &initial, 0.0, t_end, &mut |s| samples.push(*s));
+    let mut wall_seconds = start.elapsed().as_secs_f64();
+    // Short runs are timed again (the same deterministic run), best of several: one run of a
+    // few milliseconds is at the mercy of the shared machine.
+    if result.is_ok() && wall_seconds < 0.2 {
+        for _ in 0..REPEATS_OF_SHORT_RUNS {
+            let mut again = kind
+                .build(step, tolerance)
+                .map_err(|e| BenchError::Dynamics {
+                    context: context.clone(),
+                    message: e.to_string(),
+                })?;
+            let start = Instant::now();
+            let repeat = again.integrate(model, &initial, 0.0, t_end, &mut |_| {});
+            let t = start.elapsed().as_secs_f64();
+            if repeat.is_ok() {
+                wall_seconds = wall_seconds.min(t);
+            }
+        }
+    }
+    let summary = match result {
+        Ok(s) => s,
+        Err(e) => {
+            // A failed run is a row, not the end of the bench (a large step may not survive
+            // the close approach).
+            return Ok(RunOutcome {
+                row: DynamicsRow {
+                    scene: scene.into(),
+                    model: model_name.into(),
+                    integrator: kind.name().into(),
+                    setting: setting_text,
+                    t_end,
+                    steps: 0,
+                    force_evaluations: 0,
+                    wall_seconds,
+                    energy_error: None,
+                    trajectory_error: None,
+                    termination: format!("failed: {e}"),
+                },
+                final_relative: None,
+            });
+        }
+    };
+    let completed = matches!(summary.termination, Termination::Completed);
+    let termination = match &summary.termination {
+        Termination::Completed => "completed".to_string(),
+        Termination::Contact(c) => format!("contact at t = {:.3}", c.sample.time),
+    };
+    let (energy_error, trajectory_error, final_relative) = if completed {
+        let mut monitor = ConservationMonitor::new(model);
+        for s in &samples {
+            monitor.observe(s);
+        }
+        let energy = monitor.energy().map_err(|(t, e)| BenchError::Dynamics {
+            context: format!("{context}: energy at t = {t}"),
+            message: e.to_string(),
+        })?;
+        let fin = summary.last.state.relative_position();
+        let trajectory = reference.map(|r| floored((fin - r).norm()));
+        (
+            Some(floored(energy.max_relative_drift)),
+            trajectory,
+            Some(fin),
+        )
+    } else {
+        (None, None, None)
+    };
+    Ok(RunOutcome {
+        row: DynamicsRow {
+            scene: scene.into(),
+            model: model_name.into(),
+            integrator: kind.name().into(),
+            setting: setting_text,
+            t_end,
+            steps: summary.steps,
+            force_evaluations: summary.force_evaluations,
+            wall_seconds,
+            energy_error,
+            trajectory_error,
+            termination,
+        },
+        final_relative,
+    })
+}
+
+fn reference_final(
+    run: SceneRun<'_>,
+    t_end: f64,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Vec3, BenchError> {
+    let SceneRun {
+        scene, model_name, ..
+    } = run;
+    let outcome = run_one(
+        run,
+        IntegratorKind::Dop853,
+        REFERENCE_TOLERANCE,
+        t_end,
+        None,
+    )?;
+    progress(&format!(
+        "{scene}: reference run (dop853, tol {REFERENCE_TOLERANCE:.0e}, {model_name}): {} steps, {:.2} s, {}",
+        outcome.row.steps, outcome.row.wall_seconds, outcome.row.termination
+    ));
+    outcome.final_relative.ok_or_else(|| BenchError::Dynamics {
+        context: format!("{scene} reference run"),
+        message: outcome.row.termination,
+    })
+}
+
+fn sweep_all(
+    run: SceneRun<'_>,
+    paper_step: f64,
+    reference: Vec3,
+    quick: bool,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Vec<DynamicsRow>, BenchError> {
+    let mut rows = Vec::new();
+    for kind in IntegratorKind::ALL {
+        for setting in sweep(kind, paper_step, quick) {
+            let outcome = run_one(run, kind, setting, PAPER_T_END, Some(reference))?;
+            progress(&dynamics_line(&outcome.row));
+            rows.push(outcome.row);
+        }
+    }
+    Ok(rows)
+}
+
+fn dynamics_line(r: &DynamicsRow) -> String {
+    let e = |v: Option<f64>| v.map_or("—".to_string(), |x| format!("{x:.1e}"));
+    format!(
+        "({}) {}, {}: {} {}: {} steps, {} force evaluations, {:.3} s, energy error {}, trajectory error {}, {}",
+        if r.scene == "paper-2s" { "b" } else { "c" },
+        r.scene,
+        r.model,
+        r.integrator,
+        r.setting,
+        r.steps,
+        r.force_evaluations,
+        r.wall_seconds,
+        e(r.energy_error),
+        e(r.trajectory_error),
+        r.termination
+    )
+}
+
+struct SceneOutcome {
+    rows: Vec<DynamicsRow>,
+    /// Seconds spent building the model (the table for the fast path).
+    table_seconds: f64,
+    /// Reference relative position at t_end.
+    reference_final: Option<Vec3>,
+}
+
+fn dynamics_error(context: &str, e: impl std::fmt::Display) -> BenchError {
+    BenchError::Dynamics {
+        context: context.into(),
+        message: e.to_string(),
+    }
+}
+
+fn paper_2s(
+    options: &BenchOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<SceneOutcome, BenchError> {
+    let scene = "paper-2s";
+    let initial = paper_initial_state();
+    let start = Instant::now();
+    let fast = SceneModel::build(
+        paper_spheroid()?,
+        paper_spheroid()?,
+        &initial,
+        &SceneSettings::default(),
+    )
+    .map_err(|e| dynamics_error("paper-2s interpolant", e))?;
+    let table_seconds = start.elapsed().as_secs_f64();
+    let fast_name = if fast.is_interpolated() {
+        "interpolant"
+    } else {
+        "direct engine"
+    };
+    progress(&format!(
+        "(b) paper-2s: model built in {table_seconds:.2} s ({fast_name})"
+    ));
+    let fast_run = SceneRun {
+        scene,
+        model_name: fast_name,
+        model: &fast,
+    };
+    let reference = reference_final(fast_run, PAPER_T_END, progress)?;
+    let mut rows = sweep_all(fast_run, 0.1, reference, options.quick, progress)?;
+
+    // The direct surface integral at every force evaluation: the paper's own setting (RK4,
+    // dt = 0.1) over the baseline's shortened run (t = 0 … 3), and in full mode the whole run
+    // and adaptive runs (against the interpolant's reference: this also shows the table's
+    // error).
+    let direct = EngineModel::new(
+        paper_spheroid()?,
+        paper_spheroid()?,
+        InteractionOptions::default(),
+    )
+    .map_err(|e| dynamics_error("paper-2s direct engine", e))?;
+    let mut direct_runs = vec![(IntegratorKind::Rk4, 0.1, 3.0)];
+    if !options.quick {
+        direct_runs.push((IntegratorKind::Rk4, 0.1, PAPER_T_END));
+        direct_runs.push((IntegratorKind::Dop853, 1e-10, PAPER_T_END));
+        direct_runs.push((IntegratorKind::Dop853, 1e-12, PAPER_T_END));
+    }
+    for (kind, setting, t_end) in direct_runs {
+        let reference = (t_end == PAPER_T_END).then_some(reference);
+        let direct_run = SceneRun {
+            scene,
+            model_name: "direct engine",
+            model: &direct,
+        };
+        let outcome = run_one(direct_run, kind, setting, t_end, reference)?;
+        progress(&dynamics_line(&outcome.row));
+        rows.push(outcome.row);
+    }
+    Ok(SceneOutcome {
+        rows,
+        table_seconds,
+        reference_final: Some(reference),
+    })
+}
+
+fn paper_2d(
+    options: &BenchOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<SceneOutcome, BenchError> {
+    let scene = "paper-2d";
+    let model = EngineModel::new(paper_disk()?, paper_disk()?, InteractionOptions::default())
+        .map_err(|e| dynamics_error("paper-2d model", e))?;
+    let run = SceneRun {
+        scene,
+        model_name: "closed form (disks)",
+        model: &model,
+    };
+    let reference = reference_final(run, PAPER_T_END, progress)?;
+    let rows = sweep_all(run, 0.01, reference, options.quick, progress)?;
+    Ok(SceneOutcome {
+        rows,
+        table_seconds: 0.0,
+        reference_final: Some(reference),
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// The baseline and the speed-ups.
+
+/// The paper's method at one separation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct BaselineForce {
+    separation: f64,
+    /// Seconds per force evaluation (median).
+    seconds: f64,
+    /// Relative force error against the reference.
+    force_error: f64,
+    /// Relative energy error, if measured.
+    energy_error: Option<f64>,
+    /// Seconds per energy evaluation, if measured.
+    energy_seconds: Option<f64>,
+}
+
+/// The baseline figures used here.
+#[derive(Debug, Clone, PartialEq, Default)]
+struct Baseline {
+    /// Force evaluations with B on A's x axis, one per separation.
+    force: Vec<BaselineForce>,
+    /// Seconds per RK4 step of the shortened run (t = 0 … t_end_short), and that t_end.
+    rk4_step: Option<(f64, f64)>,
+    /// Whole paper-2s run, forces only: seconds, final R_B − R_A, max |ΔE/E0|.
+    full_run: Option<(f64, Vec3, f64)>,
+}
+
+fn parse_baseline(root: &Value) -> Result<Baseline, BenchError> {
+    let mut b = Baseline::default();
+    let evaluations = root["force_evaluations"]
+        .as_array()
+        .ok_or_else(|| BenchError::Data("baseline: no force_evaluations".into()))?;
+    for e in evaluations {
+        if number(&e["direction_angle_rad"]) != Some(0.0) {
+            continue;
+        }
+        let (Some(d), Some(s), Some(err)) = (
+            number(&e["separation"]),
+            number(&e["seconds_per_force_evaluation_median"]),
+            number(&e["force_relative_error"]),
+        ) else {
+            continue;
+        };
+        b.force.push(BaselineForce {
+            separation: d,
+            seconds: s,
+            force_error: err,
+            energy_error: number(&e["energy_relative_error"]),
+            energy_seconds: number(&e["seconds_per_energy_evaluation"]),
+        });
+    }
+    let short = &root["rk4_run"];
+    if let (Some(s), Some(t)) = (number(&short["seconds_per_step"]), number(&short["t_end"])) {
+        b.rk4_step = Some((s, t));
+    }
+    let full = &root["rk4_full_run"];
+    if let (Some(s), Some(ra), Some(rb)) = (
+        number(&full["wall_seconds_forces"]),
+        vector(&full["final_positions"]["R_A"]),
+        vector(&full["final_positions"]["R_B"]),
+    ) {
+        let de = number(&full["energy_every_step"]["max_abs_relative_energy_change"])
+            .unwrap_or(f64::NAN);
+        b.full_run = Some((s, rb - ra, de));
+    }
+    Ok(b)
+}
+
+fn load_baseline(
+    options: &BenchOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<(Baseline, String), BenchError> {
+    let committed: Value = serde_json::from_str(BASELINE_JSON)
+        .map_err(|e| BenchError::Data(format!("tools/paper_baseline/baseline.json: {e}")))?;
+    let mut baseline = parse_baseline(&committed)?;
+    let date = committed["date_utc"].as_str().unwrap_or("unknown date");
+    let committed_source = format!(
+        "committed tools/paper_baseline/baseline.json (run of {date}, {} mode)",
+        committed["mode"].as_str().unwrap_or("?")
+    );
+    if !options.rerun_baseline {
+        return Ok((
+            baseline,
+            format!("{committed_source}; not re-run (--baseline re-runs it in this sitting)"),
+        ));
+    }
+    match rerun_baseline(options, progress) {
+        Ok(fresh) => {
+            let parsed = parse_baseline(&fresh)?;
+            baseline.force = parsed.force;
+            baseline.rk4_step = parsed.rk4_step.or(baseline.rk4_step);
+            let full_note = if parsed.full_run.is_some() {
+                baseline.full_run = parsed.full_run;
+                "whole run also re-measured"
+            } else {
+                "whole paper-2s run from the committed file"
+            };
+            Ok((
+                baseline,
+                format!(
+                    "re-run in this sitting ({} mode; {full_note}: {committed_source})",
+                    fresh["mode"].as_str().unwrap_or("?")
+                ),
+            ))
+        }
+        Err(why) => Ok((
+            baseline,
+            format!("{committed_source}; re-run not possible: {why}"),
+        )),
+    }
+}
+
+fn rerun_baseline(options: &BenchOptions, progress: &mut dyn FnMut(&str)) -> Result<Value, String> {
+    if !Path::new(BASELINE_SCRIPT).exists() {
+        return Err(format!("{BASELINE_SCRIPT} not found"));
+    }
+    let check = Command::new(&options.python)
+        .args(["-c", "import scipy, numpy"])
+        .output()
+        .map_err(|e| format!("{} cannot be started: {e}", options.python))?;
+    if !check.status.success() {
+        return Err(format!("{} has no scipy/numpy", options.python));
+    }
+    let mut args = vec![BASELINE_SCRIPT, "--json"];
+    if options.quick {
+        args.push("--quick");
+    } else {
+        args.push("--no-full-run");
+    }
+    progress(&format!(
+        "baseline: running {} {} (the paper's method, scipy)",
+        options.python,
+        args.join(" ")
+    ));
+    let output = Command::new(&options.python)
+        .args(&args)
+        .output()
+        .map_err(|e| format!("{} cannot be started: {e}", options.python))?;
+    if !output.status.success() {
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let last = stderr.lines().last().unwrap_or("").to_string();
+        return Err(format!("the script failed ({}): {last}", output.status));
+    }
+    serde_json::from_slice(&output.stdout).map_err(|e| format!("its output is not JSON: {e}"))
+}
+
+/// The engine's default: azimuth–height ladder at 10⁻¹².
+const DEFAULT_FAMILY: (&str, &str) = ("AH ladder", "tol 1e-12");
+
+fn speedups(
+    baseline: &Baseline,
+    interaction: &[InteractionRow],
+    dynamics: &[DynamicsRow],
+    table_seconds: f64,
+    reference: Option<Vec3>,
+) -> Vec<Speedup> {
+    let mut out = Vec::new();
+    for &BaselineForce {
+        separation: d,
+        seconds,
+        force_error: error,
+        ..
+    } in &baseline.force
+    {
+        let at_d: Vec<&InteractionRow> = interaction
+            .iter()
+            .filter(|r| r.separation == d && r.converged)
+            .collect();
+        // The engine's default if it was run, else the fastest row at least as accurate.
+        let default = at_d
+            .iter()
+            .find(|r| r.family == DEFAULT_FAMILY.0 && r.setting == DEFAULT_FAMILY.1);
+        let as_accurate = at_d
+            .iter()
+            .filter(|r| r.force_error <= error.max(ERROR_FLOOR))
+            .min_by(|a, b| a.seconds.total_cmp(&b.seconds));
+        for (label, row) in [
+            ("engine default", default),
+            ("fastest as accurate", as_accurate),
+        ] {
+            if let Some(r) = row {
+                out.push(Speedup {
+                    task: format!("force evaluation at separation {d} ({label})"),
+                    baseline_seconds: seconds,
+                    surfgrav_seconds: r.seconds,
+                    ratio: seconds / r.seconds,
+                    note: format!(
+                        "force error: paper's method {error:.1e}, surfgrav {:.1e} ({} {}; surfgrav also computes torques and energy)",
+                        r.force_error, r.family, r.setting
+                    ),
+                });
+            }
+        }
+    }
+    let find = |model: &str, integrator: &str, setting: &str, t_end: f64| {
+        dynamics.iter().find(|r| {
+            r.scene == "paper-2s"
+                && r.model == model
+                && r.integrator == integrator
+                && r.setting == setting
+                && r.t_end == t_end
+                && r.termination == "completed"
+        })
+    };
+    if let (Some((seconds, t_short)), Some(r)) = (
+        baseline.rk4_step,
+        find("direct engine", "rk4", "dt = 0.1", 3.0),
+    ) {
+        let ours = r.wall_seconds / r.steps.max(1) as f64;
+        out.push(Speedup {
+            task: format!("RK4 step of paper-2s, t = 0 … {t_short}, direct surface integral"),
+            baseline_seconds: seconds,
+            surfgrav_seconds: ours,
+            ratio: seconds / ours,
+            note: "mean over the shortened run's steps; surfgrav's engine at tolerance 1e-12"
+                .into(),
+        });
+    }
+    if let Some((seconds, final_rel, energy)) = baseline.full_run {
+        let baseline_trajectory = reference.map(|r| (final_rel - r).norm());
+        let accuracy = |r: &DynamicsRow| {
+            format!(
+                "max |ΔE/E0|: paper's method {energy:.1e}, surfgrav {}; trajectory error at t = 300: paper's method {}, surfgrav {}",
+                r.energy_error.map_or("—".into(), |e| format!("{e:.1e}")),
+                baseline_trajectory.map_or("—".into(), |e| format!("{e:.1e}")),
+                r.trajectory_error.map_or("—".into(), |e| format!("{e:.1e}")),
+            )
+        };
+        if let Some(r) = find("direct engine", "rk4", "dt = 0.1", PAPER_T_END) {
+            out.push(Speedup {
+                task: "whole paper-2s (RK4, dt = 0.1, t = 300), direct surface integral".into(),
+                baseline_seconds: seconds,
+                surfgrav_seconds: r.wall_seconds,
+                ratio: seconds / r.wall_seconds,
+                note: accuracy(r),
+            });
+        }
+        if let Some(r) = find("interpolant", "rk4", "dt = 0.1", PAPER_T_END) {
+            let ours = r.wall_seconds + table_seconds;
+            out.push(Speedup {
+                task: "whole paper-2s (RK4, dt = 0.1, t = 300), tabulated central pair".into(),
+                baseline_seconds: seconds,
+                surfgrav_seconds: ours,
+                ratio: seconds / ours,
+                note: format!(
+                    "including the table's build, {table_seconds:.3} s; {}",
+                    accuracy(r)
+                ),
+            });
+        }
+        // The fastest interpolant run at least as accurate in both measures.
+        if let Some(bt) = baseline_trajectory {
+            let best = dynamics
+                .iter()
+                .filter(|r| {
+                    r.scene == "paper-2s"
+                        && r.model == "interpolant"
+                        && r.energy_error.is_some_and(|e| e <= energy)
+                        && r.trajectory_error.is_some_and(|e| e <= bt)
+                })
+                .min_by(|a, b| a.wall_seconds.total_cmp(&b.wall_seconds));
+            if let Some(r) = best {
+                let ours = r.wall_seconds + table_seconds;
+                out.push(Speedup {
+                    task: format!(
+                        "whole paper-2s at equal or better accuracy, tabulated central pair ({} {})",
+                        r.integrator, r.setting
+                    ),
+                    baseline_seconds: seconds,
+                    surfgrav_seconds: ours,
+                    ratio: seconds / ours,
+                    note: format!("including the table's build; {}", accuracy(r)),
+                });
+            }
+        }
+    }
+    out
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tables.
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map_or(String::new(), |x| format!("{x:e}"))
+}
+
+fn opt_md(v: Option<f64>) -> String {
+    v.map_or("—".into(), |x| format!("{x:.1e}"))
+}
+
+fn interaction_markdown(rows: &[InteractionRow], baseline: &Baseline) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "# Interaction of the paper's pair: error against time\n\nTwo oblate spheroids a = 1, c = 0.25, m = 1, G = 1, common equatorial plane, B on A's x axis. Errors relative, against `tests/reference/interactions.json` (independent volume integration, about 2e-16), floored at {ERROR_FLOOR:.0e}. AH: azimuth–height (the paper's (φ, z)); PA: polar angle–azimuth. Times: one interaction (force, torques, energy), best of several batches, tables already built.\n"
+    );
+    for d in SEPARATIONS {
+        let _ = writeln!(s, "\n## Separation {d}\n");
+        let _ = writeln!(
+            s,
+            "| rule | setting | evaluations | µs / interaction | force error | energy error | engine's estimate | converged |"
+        );
+        let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---|");
+        for r in rows.iter().filter(|r| r.separation == d) {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {:.2} | {:.1e} | {:.1e} | {:.1e} | {} |",
+                r.family,
+                r.setting,
+                r.evaluations,
+                r.seconds * 1e6,
+                r.force_error,
+                r.energy_error,
+                r.error_estimate,
+                if r.converged { "yes" } else { "no" }
+            );
+        }
+        if let Some(&BaselineForce {
+            seconds: secs,
+            force_error: ferr,
+            energy_error: eerr,
+            energy_seconds: esecs,
+            ..
+        }) = baseline.force.iter().find(|b| b.separation == d)
+        {
+            let _ = writeln!(
+                s,
+                "| paper's method (scipy dblquad ×3) | default tolerances | — | {:.0} | {ferr:.1e} | {} | — | — |",
+                secs * 1e6,
+                opt_md(eerr)
+            );
+            if let Some(es) = esecs {
+                let _ = writeln!(
+                    s,
+                    "\n(The paper's method's energy is one more dblquad: {:.0} µs.)",
+                    es * 1e6
+                );
+            }
+        }
+    }
+    s
+}
+
+fn interaction_csv(rows: &[InteractionRow]) -> String {
+    let mut s = String::from(
+        "separation,rule,setting,evaluations,seconds_per_interaction,force_relative_error,energy_relative_error,engine_error_estimate,converged\n",
+    );
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{:e},{:e},{:e},{:e},{}",
+            r.separation,
+            csv_field(&r.family),
+            csv_field(&r.setting),
+            r.evaluations,
+            r.seconds,
+            r.force_error,
+            r.energy_error,
+            r.error_estimate,
+            r.converged
+        );
+    }
+    s
+}
+
+fn dynamics_markdown(rows: &[DynamicsRow], table_seconds: f64) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "# Integrators on the paper's scenes: error against wall time\n\nInitial state R_A = (−3.5, 0, 0), V_A = (0, 0.2, 0), B mirrored; t = 0 … {PAPER_T_END} unless stated. Energy error: max |E − E0| / |E0| over the accepted steps. Trajectory error: |r(t_end) − r_ref(t_end)| (length units) for r = R_B − R_A, against DOP853 at tolerance {REFERENCE_TOLERANCE:.0e} with the same model ('interpolant' rows and 'direct engine' rows share the interpolant's reference, so the latter include the table's error). Errors floored at {ERROR_FLOOR:.0e}. Wall time of the integration alone; paper-2s's table took {table_seconds:.3} s to build.\n"
+    );
+    for scene in ["paper-2s", "paper-2d"] {
+        let _ = writeln!(s, "\n## {scene}\n");
+        let _ = writeln!(
+            s,
+            "| model | integrator | setting | t_end | steps | force evaluations | wall s | energy error | trajectory error | end |"
+        );
+        let _ = writeln!(s, "|---|---|---|---:|---:|---:|---:|---:|---:|---|");
+        for r in rows.iter().filter(|r| r.scene == scene) {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {} | {:.4} | {} | {} | {} |",
+                r.model,
+                r.integrator,
+                r.setting,
+                r.t_end,
+                r.steps,
+                r.force_evaluations,
+                r.wall_seconds,
+                opt_md(r.energy_error),
+                opt_md(r.trajectory_error),
+                r.termination
+            );
+        }
+    }
+    s
+}
+
+fn dynamics_csv(rows: &[DynamicsRow]) -> String {
+    let mut s = String::from(
+        "scene,model,integrator,setting,t_end,steps,force_evaluations,wall_seconds,energy_relative_error,trajectory_error,termination\n",
+    );
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{:e},{},{},{}",
+            r.scene,
+            csv_field(&r.model),
+            r.integrator,
+            csv_field(&r.setting),
+            r.t_end,
+            r.steps,
+            r.force_evaluations,
+            r.wall_seconds,
+            opt(r.energy_error),
+            opt(r.trajectory_error),
+            csv_field(&r.termination)
+        );
+    }
+    s
+}
+
+fn speedup_markdown(rows: &[Speedup], source: &str) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "# Speed-up over the paper's method\n\nBaseline: {source}. Ratio = the paper's method's seconds / surfgrav's seconds for the same task, both on this kind of machine (surfgrav measured now).\n"
+    );
+    let _ = writeln!(
+        s,
+        "| task | paper's method, s | surfgrav, s | ratio | accuracy |"
+    );
+    let _ = writeln!(s, "|---|---:|---:|---:|---|");
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "| {} | {:.3e} | {:.3e} | {:.0} | {} |",
+            r.task, r.baseline_seconds, r.surfgrav_seconds, r.ratio, r.note
+        );
+    }
+    s
+}
+
+fn speedup_csv(rows: &[Speedup]) -> String {
+    let mut s = String::from("task,baseline_seconds,surfgrav_seconds,ratio,note\n");
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "{},{:e},{:e},{:e},{}",
+            csv_field(&r.task),
+            r.baseline_seconds,
+            r.surfgrav_seconds,
+            r.ratio,
+            csv_field(&r.note)
+        );
+    }
+    s
+}
+
+// ---------------------------------------------------------------------------------------------
+// Figures.
+
+fn interaction_figure(rows: &[InteractionRow], baseline: &Baseline, force: bool) -> Figure {
+    let what = if force { "force" } else { "energy" };
+    let mut panels = Vec::new();
+    for d in SEPARATIONS {
+        let mut families: Vec<String> = Vec::new();
+        for r in rows.iter().filter(|r| r.separation == d) {
+            if !families.contains(&r.family) {
+                families.push(r.family.clone());
+            }
+        }
+        let mut series: Vec<Series> = families
+            .iter()
+            .map(|f| {
+                let mut points: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| r.separation == d && &r.family == f)
+                    .map(|r| {
+                        (
+                            r.seconds * 1e6,
+                            if force { r.force_error } else { r.energy_error },
+                        )
+                    })
+                    .collect();
+                points.sort_by(|a, b| a.0.total_cmp(&b.0));
+                Series {
+                    label: f.clone(),
+                    points,
+                    style: Style::LinePoints,
+                }
+            })
+            .collect();
+        if let Some(&BaselineForce {
+            seconds: secs,
+            force_error: ferr,
+            energy_error: eerr,
+            energy_seconds: esecs,
+            ..
+        }) = baseline.force.iter().find(|b| b.separation == d)
+        {
+            let point = if force {
+                Some((secs * 1e6, floored(ferr)))
+            } else {
+                eerr.zip(esecs).map(|(e, s)| (s * 1e6, floored(e)))
+            };
+            if let Some(p) = point {
+                series.push(Series {
+                    label: "paper's method (scipy)".into(),
+                    points: vec![p],
+                    style: Style::Points,
+                });
+            }
+        }
+        panels.push(Panel::Log {
+            lines: LinePanel {
+                title: format!("separation {d}"),
+                x_label: "time per evaluation (µs)".into(),
+                y_label: format!("relative {what} error"),
+                series,
+                circles: vec![],
+                equal_aspect: false,
+            },
+            log_x: true,
+            log_y: true,
+        });
+    }
+    Figure {
+        title: format!("Paper's spheroid pair: {what} error against time"),
+        panels,
+        columns: 2,
+    }
+}
+
+/// The baseline's whole run as a point (wall s, energy error, trajectory error).
+fn baseline_run_point(baseline: &Baseline, reference: Option<Vec3>) -> Option<(f64, f64, f64)> {
+    let (seconds, final_rel, energy) = baseline.full_run?;
+    let trajectory = (final_rel - reference?).norm();
+    (energy.is_finite() && trajectory.is_finite())
+        .then(|| (seconds, floored(energy), floored(trajectory)))
+}
+
+fn dynamics_figure(rows: &[DynamicsRow], scene: &str, baseline: Option<(f64, f64, f64)>) -> Figure {
+    let mut panels = Vec::new();
+    for energy in [true, false] {
+        let mut keys: Vec<(String, String)> = Vec::new();
+        for r in rows
+            .iter()
+            .filter(|r| r.scene == scene && r.t_end == PAPER_T_END)
+        {
+            let key = (r.model.clone(), r.integrator.clone());
+            if !keys.contains(&key) {
+                keys.push(key);
+            }
+        }
+        let several_models = keys.iter().any(|k| k.0 != keys[0].0);
+        let mut series: Vec<Series> = keys
+            .iter()
+            .filter_map(|(model, integrator)| {
+                let mut points: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| {
+                        r.scene == scene
+                            && &r.model == model
+                            && &r.integrator == integrator
+                            && r.t_end == PAPER_T_END
+                            && r.wall_seconds > 0.0
+                    })
+                    .filter_map(|r| {
+                        let e = if energy {
+                            r.energy_error
+                        } else {
+                            r.trajectory_error
+                        }?;
+                        Some((r.wall_seconds, e))
+                    })
+                    .collect();
+                if points.is_empty() {
+                    return None;
+                }
+                points.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let label = if several_models {
+                    format!("{integrator} ({model})")
+                } else {
+                    integrator.clone()
+                };
+                let style = if model == "direct engine" {
+                    Style::Points
+                } else {
+                    Style::LinePoints
+                };
+                Some(Series {
+                    label,
+                    points,
+                    style,
+                })
+            })
+            .collect();
+        if let Some((s, e, t)) = baseline {
+            series.push(Series {
+                label: "paper's method (RK4, dt = 0.1)".into(),
+                points: vec![(s, if energy { e } else { t })],
+                style: Style::Points,
+            });
+        }
+        panels.push(Panel::Log {
+            lines: LinePanel {
+                title: if energy {
+                    "energy error".into()
+                } else {
+                    "trajectory error at t = 300".into()
+                },
+                x_label: "wall time (s)".into(),
+                y_label: if energy {
+                    "max |E − E0| / |E0|".into()
+                } else {
+                    "|r − r_ref| (length units)".into()
+                },
+                series,
+                circles: vec![],
+                equal_aspect: false,
+            },
+            log_x: true,
+            log_y: true,
+        });
+    }
+    Figure {
+        title: format!("{scene}: error against wall time, t = 0 … 300"),
+        panels,
+        columns: 1,
+    }
+}

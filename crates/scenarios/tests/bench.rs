@@ -1,0 +1,138 @@
+//! `surfgrav bench --quick`: every promised file is written, and every error it reports is
+//! finite and positive (errors are floored at `ERROR_FLOOR`, so zero is never reported).
+
+use std::path::Path;
+use surfgrav_scenarios::bench::{run_bench, BenchOptions, ERROR_FLOOR, SEPARATIONS};
+
+#[test]
+fn quick_bench_writes_every_file_with_finite_positive_errors() {
+    let out = std::env::temp_dir().join(format!("surfgrav-bench-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    check_bench(BenchOptions::new(&out).quick(), &out);
+    if std::env::var_os("SURFGRAV_BENCH_KEEP").is_none() {
+        let _ = std::fs::remove_dir_all(&out);
+    }
+}
+
+/// The full bench (about a minute): same checks. Run with
+/// `SURFGRAV_BENCH_OUT=target/bench cargo test -p surfgrav-scenarios --test bench -- --ignored --nocapture`
+/// (the output folder defaults to `target/bench-full`).
+#[test]
+#[ignore = "about a minute; run explicitly (command in the comment)"]
+fn full_bench_writes_every_file_with_finite_positive_errors() {
+    let out = std::env::var_os("SURFGRAV_BENCH_OUT")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../target/bench-full"));
+    check_bench(BenchOptions::new(&out), &out);
+}
+
+fn check_bench(options: BenchOptions, out: &Path) {
+    let mut lines = Vec::new();
+    let report = run_bench(&options, &mut |line| {
+        println!("{line}");
+        lines.push(line.to_string())
+    })
+    .unwrap();
+    assert!(lines.len() > 10);
+
+    let promised = [
+        "interaction.md",
+        "interaction.csv",
+        "interaction_force.png",
+        "interaction_force.svg",
+        "interaction_energy.png",
+        "interaction_energy.svg",
+        "dynamics.md",
+        "dynamics.csv",
+        "paper_2s.png",
+        "paper_2s.svg",
+        "paper_2d.png",
+        "paper_2d.svg",
+        "speedup.md",
+        "speedup.csv",
+    ];
+    for name in promised {
+        let path = out.join(name);
+        let size = std::fs::metadata(&path)
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+            .len();
+        assert!(size > 100, "{name} has only {size} bytes");
+        assert!(
+            report.files.contains(&path),
+            "{name} not listed in the report"
+        );
+    }
+    assert_eq!(report.files.len(), promised.len());
+
+    // (a): every separation, several rule families, errors finite and positive.
+    for d in SEPARATIONS {
+        let at_d: Vec<_> = report
+            .interaction
+            .iter()
+            .filter(|r| r.separation == d)
+            .collect();
+        assert!(at_d.len() >= 8, "separation {d}: {} rows", at_d.len());
+    }
+    for r in &report.interaction {
+        for e in [r.force_error, r.energy_error] {
+            assert!(e.is_finite() && e >= ERROR_FLOOR, "{r:?}");
+        }
+        assert!(r.seconds.is_finite() && r.seconds > 0.0, "{r:?}");
+        assert!(r.evaluations > 0, "{r:?}");
+    }
+    // The engine's certified ladder at 1e-9 meets 1e-9 against the independent reference
+    // (1e-9 is the tolerance asked for; the reference is good to about 2e-16).
+    for r in report
+        .interaction
+        .iter()
+        .filter(|r| r.family.ends_with("ladder") && r.setting == "tol 1e-9")
+    {
+        assert!(r.force_error <= 1e-9 && r.energy_error <= 1e-9, "{r:?}");
+    }
+
+    // (b), (c): both scenes, every integrator, every completed run has both errors.
+    for scene in ["paper-2s", "paper-2d"] {
+        let rows: Vec<_> = report
+            .dynamics
+            .iter()
+            .filter(|r| r.scene == scene)
+            .collect();
+        for name in [
+            "rk4", "leapfrog", "yoshida4", "yoshida6", "yoshida8", "dopri5", "dop853",
+        ] {
+            assert!(
+                rows.iter().any(|r| r.integrator == name),
+                "{scene}: no {name} run"
+            );
+        }
+    }
+    let mut errors = 0;
+    for r in &report.dynamics {
+        for e in [r.energy_error, r.trajectory_error].into_iter().flatten() {
+            assert!(e.is_finite() && e >= ERROR_FLOOR, "{r:?}");
+            errors += 1;
+        }
+        assert!(r.wall_seconds.is_finite() && r.wall_seconds >= 0.0, "{r:?}");
+        if r.termination == "completed" && r.t_end == 300.0 {
+            assert!(
+                r.energy_error.is_some() && r.trajectory_error.is_some(),
+                "{r:?}"
+            );
+        }
+    }
+    // Two scenes, seven integrators, at least two settings each, two errors per run.
+    assert!(errors >= 2 * 7 * 2 * 2, "only {errors} dynamics errors");
+
+    // Speed-ups against the committed baseline, and the report says where it came from.
+    assert!(
+        report.baseline_source.contains("committed"),
+        "{}",
+        report.baseline_source
+    );
+    assert!(!report.speedups.is_empty());
+    for s in &report.speedups {
+        assert!(s.ratio.is_finite() && s.ratio > 0.0, "{s:?}");
+    }
+    let speedup_md = std::fs::read_to_string(out.join("speedup.md")).unwrap();
+    assert!(speedup_md.contains("committed"), "{speedup_md}");
+}
