@@ -816,16 +816,22 @@ pub struct Adaptive {
 /// of A, acceleration of B) per stage.
 type Stages = [[Vec3; 4]; MAX_STAGES];
 
-/// $\mathbf y + h\sum_j a_j\mathbf k_j$.
+/// $\mathbf y + h\sum_j a_j\mathbf k_j$, the sum formed before the multiplication by h: a
+/// product $a_j h$ rounded once would repeat the same relative error at every step of equal
+/// length (a systematic error), while the rounding of $h\sum_j a_j\mathbf k_j$ depends on the
+/// data.
 fn combine(y: &[Vec3; 4], row: &[Real], k: &Stages, h: Real) -> [Vec3; 4] {
-    let mut out = *y;
+    let mut sum = [Vec3::zeros(); 4];
     for (kj, &a) in k.iter().zip(row) {
         if a != 0.0 {
-            let c = a * h;
             for n in 0..4 {
-                out[n] += kj[n] * c;
+                sum[n] += kj[n] * a;
             }
         }
+    }
+    let mut out = *y;
+    for n in 0..4 {
+        out[n] += sum[n] * h;
     }
     out
 }
@@ -922,31 +928,45 @@ impl Adaptive {
         self
     }
 
-    /// One step of length `h` of the pair; returns the propagated sample and the error norm, and
-    /// leaves the stage derivatives in `k` (for the dense output).
+    /// One step of length `h` of the pair from `from`, whose state carries the low-order part
+    /// `carry` (compensated summation, see [`Adaptive::run`]); returns the propagated sample,
+    /// its carry and the error norm, and leaves the stage derivatives in `k` (for the dense
+    /// output).
     fn rk_step(
         &self,
         dynamics: &mut Dynamics<'_>,
         from: &Sample,
+        carry: &[Vec3; 4],
         h: Real,
         k: &mut Stages,
-    ) -> Result<(Sample, Real), InteractionError> {
+    ) -> Result<(Sample, [Vec3; 4], Real), InteractionError> {
         let tableau = self.pair.tableau();
         let y = Phase::of(&from.state).0;
         k[0] = [y[2], y[3], from.acceleration_a, from.acceleration_b];
-        let mut stage = y;
-        for (i, row) in tableau.a.iter().enumerate() {
-            stage = combine(&y, row, k, h);
+        let inner = &tableau.a[..tableau.a.len() - 1];
+        for (i, row) in inner.iter().enumerate() {
+            let stage = combine(&y, row, k, h);
             let acc = dynamics.accelerations(&stage[0], &stage[1])?;
             k[i + 1] = [stage[2], stage[3], acc.0, acc.1];
         }
-        // The last stage is the propagated solution (FSAL); its derivative is the end
-        // acceleration.
-        let end = stage;
-        let error = self.error_norm(tableau, &y, &end, k, h);
+        // The increment h Σ b_i k_i is formed on its own and added with compensated summation
+        // (Kahan): the rounding of y + Δ is kept in the carry and added back at the next step,
+        // so round-off does not accumulate systematically over long runs (Brouwer's law).
+        let increment = combine(&[Vec3::zeros(); 4], tableau.b(), k, h);
+        let mut end = y;
+        let mut next_carry = [Vec3::zeros(); 4];
+        for n in 0..4 {
+            let delta = increment[n] + carry[n];
+            end[n] = y[n] + delta;
+            next_carry[n] = delta - (end[n] - y[n]);
+        }
+        // The last stage (FSAL) is the derivative at the propagated solution.
+        let acc = dynamics.accelerations(&end[0], &end[1])?;
         let last = tableau.stages() - 1;
-        let sample = dynamics.sample(from.time + h, Phase(end), (k[last][2], k[last][3]));
-        Ok((sample, error))
+        k[last] = [end[2], end[3], acc.0, acc.1];
+        let error = self.error_norm(tableau, &y, &end, k, h);
+        let sample = dynamics.sample(from.time + h, Phase(end), acc);
+        Ok((sample, next_carry, error))
     }
 
     /// The scaled error norm of a step (see the module documentation).
@@ -1122,6 +1142,8 @@ impl Adaptive {
         }
         observer(&current);
         let mut k: Stages = [[Vec3::zeros(); 4]; MAX_STAGES];
+        // Low-order part of the propagated state (compensated summation).
+        let mut carry = [Vec3::zeros(); 4];
         let mut h = self.first_step(&current, span);
         let (mut steps, mut rejected) = (0usize, 0usize);
         let mut last_rejected = false;
@@ -1142,10 +1164,10 @@ impl Adaptive {
                     min_step,
                 });
             }
-            let result = self.rk_step(&mut dynamics, &current, h_try, &mut k);
-            let (sample, error) = match result {
-                Ok((s, e)) => (Ok(s), e),
-                Err(err) => (Err(err), 0.0),
+            let result = self.rk_step(&mut dynamics, &current, &carry, h_try, &mut k);
+            let (sample, next_carry, error) = match result {
+                Ok((s, c, e)) => (Ok(s), c, e),
+                Err(err) => (Err(err), carry, 0.0),
             };
             if !error.is_finite() {
                 return Err(DynamicsError::NonFinite { time: current.time });
@@ -1165,6 +1187,7 @@ impl Adaptive {
                         self.emit_step(&mut dynamics, &current, &next, h_try, &mut k, clock, *emit);
                     }
                     current = next;
+                    carry = next_carry;
                     steps += 1;
                     observer(&current);
                     if last {
@@ -1182,8 +1205,8 @@ impl Adaptive {
                 Trial::Touching => {
                     let mut scratch: Stages = [[Vec3::zeros(); 4]; MAX_STAGES];
                     let mut step = |d: &mut Dynamics<'_>, s: &Sample, h: Real| {
-                        self.rk_step(d, s, h, &mut scratch)
-                            .map(|(sample, _)| sample)
+                        self.rk_step(d, s, &carry, h, &mut scratch)
+                            .map(|(sample, _, _)| sample)
                     };
                     let Some(event) = locate_contact(&mut dynamics, &current, h_try, &mut step)?
                     else {
