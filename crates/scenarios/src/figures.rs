@@ -103,7 +103,7 @@ pub fn orbits(run: &RunRecord) -> Figure {
             style: Style::Line,
         }],
         circles: [
-            circle((0.0, 0.0), radius_a, "A"),
+            circle((0.0, 0.0), radius_a, "A (at the origin)"),
             rel.first()
                 .and_then(|&c| circle(c, radius_b, "B at t = start")),
             closest.and_then(|r| circle((r.x, r.y), radius_b, "B at closest approach")),
@@ -115,10 +115,15 @@ pub fn orbits(run: &RunRecord) -> Figure {
     };
     Figure {
         title: format!(
-            "{}: orbits, t = {}…{} (bodies to scale, dashed)",
+            "{}: orbits, t = {}…{}{}",
             run.scene.name,
             run.scene.t_start,
-            run.t_reached()
+            run.t_reached(),
+            if radius_a > 0.0 || radius_b > 0.0 {
+                " (bodies to scale, dashed)"
+            } else {
+                " (point masses)"
+            }
         ),
         panels: vec![Panel::Lines(left), Panel::Lines(right)],
         columns: 2,
@@ -256,4 +261,64 @@ pub fn write_all(run: &RunRecord, folder: &Path) -> Result<Vec<PathBuf>, PlotErr
         files.extend(write_figure(&figure, &folder.join(stem(kind)))?);
     }
     Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::presets;
+    use crate::simulate::run_scene;
+
+    fn paper_2s(t_end: f64) -> RunRecord {
+        let mut scene = presets::find("paper-2s").unwrap().scene().unwrap();
+        scene.override_with(Some(t_end), None, None, None).unwrap();
+        run_scene(&scene).unwrap()
+    }
+
+    #[test]
+    fn orbit_figure_draws_bodies_to_scale() {
+        let run = paper_2s(40.0);
+        let figure = orbits(&run);
+        assert_eq!(figure.columns, 2);
+        let [Panel::Lines(left), Panel::Lines(right)] = &figure.panels[..] else {
+            panic!("two line panels");
+        };
+        assert!(left.equal_aspect && right.equal_aspect);
+        assert_eq!(left.series.len(), 2);
+        assert_eq!(left.series[0].points.len(), run.samples.len());
+        // Equal masses: the centre of mass is the midpoint, A starts at (−3.5, 0).
+        assert_eq!(left.series[0].points[0], (-3.5, 0.0));
+        let radii: Vec<(f64, (f64, f64))> =
+            left.circles.iter().map(|c| (c.radius, c.centre)).collect();
+        assert_eq!(radii, [(1.0, (-3.5, 0.0)), (1.0, (3.5, 0.0))]);
+        // Right panel: A at the origin, B at the start (7, 0) and at closest approach, whose
+        // distance is the smallest sampled separation (the interpolated minimum is 2.5472;
+        // samples every 0.1 miss it by less than 1e-3).
+        assert_eq!(right.circles.len(), 3);
+        assert_eq!(right.circles[1].centre, (7.0, 0.0));
+        let (x, y) = right.circles[2].centre;
+        let d = x.hypot(y);
+        assert!((d - 2.5472).abs() < 1e-3, "{d}");
+        assert!(figure.title.contains("to scale"));
+    }
+
+    #[test]
+    fn conservation_and_histograms_use_every_step() {
+        let run = paper_2s(20.0);
+        let steps = run.summary.steps;
+        let c = conservation(&run);
+        assert_eq!(c.panels.len(), 3);
+        let Panel::Lines(de) = &c.panels[1] else {
+            panic!("line panel")
+        };
+        assert_eq!(de.series[0].points.len(), steps);
+        let expected = run.energies[1] - run.energies[0];
+        assert_eq!(de.series[0].points[0], (run.samples[1].time, expected));
+        let h = histograms(&run);
+        let Panel::Histogram(hj) = &h.panels[1] else {
+            panic!("histogram")
+        };
+        assert_eq!(hj.values.len(), steps);
+        assert!(hj.x_label.contains("ΔJ"));
+    }
 }
