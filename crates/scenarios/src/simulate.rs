@@ -17,9 +17,9 @@
 use std::time::Instant;
 
 use surfgrav_dynamics::{
-    angular_momentum, total_energy, ConservationStatistics, EngineModelError, InteractionModel,
-    OrbitAnalyser, OrbitReport, PointMasses, RunSummary, Sample, SceneModel, SceneSettings,
-    SeriesAccumulator, Termination,
+    angular_momentum, total_energy, ConservationStatistics, DynamicsError, EngineModelError,
+    InteractionModel, OrbitAnalyser, OrbitReport, PointMasses, RunSummary, Sample, SceneModel,
+    SceneSettings, SeriesAccumulator, Termination,
 };
 use surfgrav_potentials::Real;
 use surfgrav_surfaces::interaction::{InteractionError as EngineError, InteractionOptions};
@@ -203,8 +203,10 @@ impl Tracker {
 /// Integrates `scene` with `prepared`, calling `progress(time)` after every sample.
 ///
 /// # Errors
-/// [`RunError::Input`] for an integrator the build cannot provide; [`RunError::Failed`] for an
-/// integrator or model failure during the run (with its time).
+/// [`RunError::Input`] for an integrator the build cannot provide and for scenes the
+/// integrators refuse at the start (torques that do not vanish: rotational dynamics is not
+/// integrated yet); [`RunError::Failed`] for an integrator or model failure during the run
+/// (with its time).
 pub fn simulate(
     scene: &Scene,
     prepared: &PreparedModel,
@@ -250,7 +252,13 @@ pub fn simulate(
                 progress(sample.time);
             },
         )
-        .map_err(|e| RunError::Failed(e.to_string()))?;
+        .map_err(|e| match e {
+            // Refused at the start: the scene, not the run, must change.
+            DynamicsError::TorquesNotSupported { .. } | DynamicsError::InvalidParameter { .. } => {
+                RunError::Input(e.to_string())
+            }
+            other => RunError::Failed(other.to_string()),
+        })?;
     if let Some(message) = energy_error {
         return Err(RunError::Failed(message));
     }

@@ -298,7 +298,13 @@ fn bad_input_is_one_line_exit_2_and_no_folder() {
         "position = [3.5, 0.0, 0.0]",
         "position = [-2.0, 0.0, 0.0]",
     );
+    let tilted = scene_with(
+        &dir,
+        "velocity = [0.0, 0.2, 0.0]",
+        "velocity = [0.0, 0.2, 0.0]\norientation = [0.3, 0.0, 0.0]",
+    );
     let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["run", &tilted], "needs rotational dynamics"),
         (
             vec!["run", "missing.toml"],
             "missing.toml: cannot read the scene file",
