@@ -48,6 +48,10 @@ fn main() {
         let integrator = Adaptive::new(tolerance, 1e-2 * tolerance).expect("valid tolerance");
         runs.push((format!("rtol {tolerance:e}"), Box::new(integrator)));
     }
+    for tolerance in [1e-8, 1e-10, 1e-12, 1e-14, 1e-15] {
+        let integrator = Adaptive::dop853(tolerance, tolerance).expect("valid tolerance");
+        runs.push((format!("tol {tolerance:e}"), Box::new(integrator)));
+    }
     for (setting, mut integrator) in runs {
         let start = Instant::now();
         let summary = integrator

@@ -30,7 +30,10 @@
 //!   $h \leftarrow h\,\min(f_{\max}, \max(f_{\min}, 0.9\,\mathrm{err}^{-1/(q+1)}))$ with q = 4,
 //!   $[f_{\min}, f_{\max}] = [0.2, 5]$ for DP5(4) and q = 7, [1/3, 6] for DOP853 (no growth
 //!   after a rejection). A step below `min_step` is a typed error carrying the time; so is a
-//!   non-finite error estimate or state.
+//!   non-finite error estimate or state. Round-off: the increment $h\sum_i b_i\mathbf k_i$ is
+//!   added with compensated (Kahan) summation and each stage sum is formed before its product
+//!   with h, so that with the coefficient correction of the tableaux the round-off energy error
+//!   of long runs grows like $\sqrt t$ (Brouwer's law), not like t (tests/long_runs.rs).
 //!
 //! Dense output: every integrator reports [`Sample`]s carrying the accelerations, so the quintic
 //! Hermite interpolant of [`crate::interpolate`] gives positions and velocities between samples
