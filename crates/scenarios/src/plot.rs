@@ -65,9 +65,10 @@ const AXIS_TITLE_SIZE: f64 = 18.0;
 const TICK_SIZE: f64 = 15.0;
 const LEGEND_SIZE: f64 = 16.0;
 
-/// Okabe–Ito palette reordered for a white background; its yellow, too pale on white, is
-/// replaced by grey.
-const PALETTE: [RGBColor; 8] = [
+/// Okabe–Ito palette reordered for a white background (its yellow, too pale on white, left
+/// out), then grey and two of Tol's muted colours (wine, olive). Series 11 and later reuse the
+/// colours with another marker shape (circle, square, triangle).
+const PALETTE: [RGBColor; 10] = [
     RGBColor(0, 114, 178),   // blue
     RGBColor(213, 94, 0),    // vermillion
     RGBColor(0, 158, 115),   // bluish green
@@ -76,7 +77,35 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(86, 180, 233),  // sky blue
     RGBColor(0, 0, 0),       // black
     RGBColor(128, 128, 128), // grey
+    RGBColor(136, 34, 85),   // wine
+    RGBColor(153, 153, 51),  // olive
 ];
+
+/// Colour and marker shape of series `k`.
+fn look(k: usize) -> (RGBColor, usize) {
+    (PALETTE[k % PALETTE.len()], k / PALETTE.len())
+}
+
+/// A filled marker (circle, square or triangle by `shape`) centred at `at`.
+fn draw_marker<DB: DrawingBackend, CT: CoordTranslate>(
+    area: &DrawingArea<DB, CT>,
+    at: CT::From,
+    shape: usize,
+    colour: RGBColor,
+) -> Result<(), String>
+where
+    CT::From: Clone,
+{
+    let style = colour.filled();
+    match shape % 3 {
+        0 => area.draw(&(EmptyElement::at(at) + plotters::element::Circle::new((0, 0), 3, style))),
+        1 => area.draw(&(EmptyElement::at(at) + Rectangle::new([(-3, -3), (3, 3)], style))),
+        _ => {
+            area.draw(&(EmptyElement::at(at) + Polygon::new(vec![(0, -4), (4, 3), (-4, 3)], style)))
+        }
+    }
+    .map_err(err)
+}
 
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -921,6 +950,7 @@ fn y_band(labels: &[String]) -> u32 {
 struct LegendEntry {
     label: String,
     colour: RGBColor,
+    shape: usize,
     kind: LegendKind,
 }
 
@@ -943,9 +973,11 @@ fn legend_entries(p: &PreparedLines) -> Vec<LegendEntry> {
     } in &p.series
     {
         if !label.is_empty() {
+            let (colour, shape) = look(*k);
             out.push(LegendEntry {
                 label: label.clone(),
-                colour: PALETTE[k % PALETTE.len()],
+                colour,
+                shape,
                 kind: match style {
                     Style::Line => LegendKind::Line,
                     Style::Dashed => LegendKind::Dashed,
@@ -959,7 +991,8 @@ fn legend_entries(p: &PreparedLines) -> Vec<LegendEntry> {
         if let Some(label) = &c.label {
             out.push(LegendEntry {
                 label: label.clone(),
-                colour: PALETTE[k % PALETTE.len()],
+                colour: look(*k).0,
+                shape: 0,
                 kind: LegendKind::Circle,
             });
         }
@@ -1013,12 +1046,7 @@ fn draw_legend<DB: DrawingBackend>(
                     style,
                 ))
                 .map_err(err)?;
-                area.draw(&plotters::element::Circle::new(
-                    (x0 + LEGEND_SAMPLE / 2, y),
-                    3,
-                    style.filled(),
-                ))
-                .map_err(err)?;
+                draw_marker(area, (x0 + LEGEND_SAMPLE / 2, y), e.shape, e.colour)?;
             }
             LegendKind::Dashed | LegendKind::Circle => {
                 let style = if matches!(e.kind, LegendKind::Circle) {
@@ -1035,13 +1063,9 @@ fn draw_legend<DB: DrawingBackend>(
                     x += dash + gap;
                 }
             }
-            LegendKind::Points => area
-                .draw(&plotters::element::Circle::new(
-                    (x0 + LEGEND_SAMPLE / 2, y),
-                    3,
-                    style.filled(),
-                ))
-                .map_err(err)?,
+            LegendKind::Points => {
+                draw_marker(area, (x0 + LEGEND_SAMPLE / 2, y), e.shape, e.colour)?
+            }
         }
         let label = shorten(&e.label, max_text);
         area.draw(&Text::new(
@@ -1175,7 +1199,7 @@ fn draw_lines<DB: DrawingBackend>(
         if points.is_empty() {
             continue;
         }
-        let colour = PALETTE[k % PALETTE.len()];
+        let (colour, shape) = look(*k);
         let shifted: Vec<(f64, f64)> = points
             .iter()
             .map(|&(x, y)| (x - x_off, y - y_off))
@@ -1186,12 +1210,13 @@ fn draw_lines<DB: DrawingBackend>(
             thin(&shifted, pixels_per_unit, pw as usize)
         };
         let pts = thinned.iter().copied();
-        let dot = |c: (f64, f64)| plotters::element::Circle::new(c, 3, colour.filled());
-        if *style == Style::LinePoints || (thinned.len() == 1 && *style != Style::Points) {
-            chart
-                .draw_series(shifted_points(points, x_off, y_off).map(dot))
-                .map_err(err)?;
-        }
+        let plotting = chart.plotting_area().clone();
+        let dots = |pts: &mut dyn Iterator<Item = (f64, f64)>| -> Result<(), String> {
+            for c in pts {
+                draw_marker(&plotting, c, shape, colour)?;
+            }
+            Ok(())
+        };
         match style {
             Style::Line | Style::LinePoints if target == Target::Svg => {
                 chart
@@ -1213,13 +1238,15 @@ fn draw_lines<DB: DrawingBackend>(
                     .draw_series(DashedLineSeries::new(pts, 10, 6, colour.stroke_width(2)))
                     .map_err(err)?;
             }
-            Style::Points => {
-                chart.draw_series(pts.map(dot)).map_err(err)?;
-            }
+            Style::Points => dots(&mut pts.clone())?,
+        }
+        // Markers on top of the line.
+        if *style == Style::LinePoints || (thinned.len() == 1 && *style != Style::Points) {
+            dots(&mut shifted_points(points, x_off, y_off))?;
         }
     }
     for (c, k) in &p.circles {
-        let colour = PALETTE[k % PALETTE.len()];
+        let colour = look(*k).0;
         let n = 240;
         let outline = (0..=n).map(|i| {
             let t = std::f64::consts::TAU * i as f64 / n as f64;

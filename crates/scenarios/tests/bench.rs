@@ -2,7 +2,7 @@
 //! finite and positive (errors are floored at `ERROR_FLOOR`, so zero is never reported).
 
 use std::path::Path;
-use surfgrav_scenarios::bench::{run_bench, BenchOptions, ERROR_FLOOR, SEPARATIONS};
+use surfgrav_scenarios::bench::{run_bench, summary, BenchOptions, ERROR_FLOOR, SEPARATIONS};
 
 #[test]
 fn quick_bench_writes_every_file_with_finite_positive_errors() {
@@ -74,10 +74,14 @@ fn check_bench(options: BenchOptions, out: &Path) {
         assert!(at_d.len() >= 8, "separation {d}: {} rows", at_d.len());
     }
     for r in &report.interaction {
-        for e in [r.force_error, r.energy_error] {
+        for e in [r.force_error, r.energy_error, r.force_only_error] {
             assert!(e.is_finite() && e >= ERROR_FLOOR, "{r:?}");
         }
         assert!(r.seconds.is_finite() && r.seconds > 0.0, "{r:?}");
+        assert!(
+            r.force_only_seconds.is_finite() && r.force_only_seconds > 0.0,
+            "{r:?}"
+        );
         assert!(r.evaluations > 0, "{r:?}");
     }
     // The engine's certified ladder at 1e-9 meets 1e-9 against the independent reference
@@ -133,6 +137,43 @@ fn check_bench(options: BenchOptions, out: &Path) {
     for s in &report.speedups {
         assert!(s.ratio.is_finite() && s.ratio > 0.0, "{s:?}");
     }
+    let text = summary(&report);
+    assert!(
+        text.contains("Speed-up") && text.contains("speedup.md"),
+        "{text}"
+    );
     let speedup_md = std::fs::read_to_string(out.join("speedup.md")).unwrap();
     assert!(speedup_md.contains("committed"), "{speedup_md}");
+}
+
+/// `--baseline`: the paper's method is re-run in the same sitting when `python3` with scipy is
+/// there (about 2 s in quick mode), and the report says which baseline it used either way.
+/// Run with `cargo test -p surfgrav-scenarios --test bench -- --ignored rerun --nocapture`.
+#[test]
+#[ignore = "runs the Python baseline (needs python3 with scipy for the re-run itself)"]
+fn quick_bench_rerun_baseline_says_where_the_baseline_came_from() {
+    let out = std::env::temp_dir().join(format!("surfgrav-bench-rerun-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let mut options = BenchOptions::new(&out).quick();
+    options.rerun_baseline = true;
+    let report = run_bench(&options, &mut |line| println!("{line}")).unwrap();
+    let scipy = std::process::Command::new("python3")
+        .args(["-c", "import scipy"])
+        .status()
+        .is_ok_and(|s| s.success());
+    if scipy {
+        assert!(
+            report.baseline_source.starts_with("re-run in this sitting"),
+            "{}",
+            report.baseline_source
+        );
+    } else {
+        assert!(
+            report.baseline_source.contains("re-run not possible"),
+            "{}",
+            report.baseline_source
+        );
+    }
+    assert!(!report.speedups.is_empty());
+    let _ = std::fs::remove_dir_all(&out);
 }
