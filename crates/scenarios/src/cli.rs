@@ -144,6 +144,26 @@ pub enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Work–precision of the engine and the integrators, and the speed-up over the paper's
+    /// method (module `bench`); writes Markdown tables, CSV and figures into a folder.
+    Bench {
+        /// Output folder (must not exist, or be empty); default: a new folder `bench`.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Small sweeps and short timing batches (seconds instead of about a minute).
+        #[arg(long)]
+        quick: bool,
+        /// Time the paper's method again (needs python3 with scipy); otherwise the committed
+        /// baseline is used.
+        #[arg(long, alias = "baseline")]
+        rerun_baseline: bool,
+        /// Python interpreter for --rerun-baseline.
+        #[arg(long, value_name = "PYTHON", default_value = "python3")]
+        python: String,
+        /// No progress output and no summary on stdout.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Run the paper's presets and write REPORT.md with the tables and figures.
     ///
     /// The precession table and Table 2 beside the paper's values, the limiting-case
@@ -244,6 +264,13 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
             run_command(&scene, out.as_deref(), &overrides, quiet)
         }
         Command::Report { out, quiet } => crate::report::report_command(out.as_deref(), quiet),
+        Command::Bench {
+            out,
+            quick,
+            rerun_baseline,
+            python,
+            quiet,
+        } => bench_command(out.as_deref(), quick, rerun_baseline, python, quiet),
         other => Ok(field_commands(other)?),
     }
 }
@@ -318,9 +345,10 @@ fn field_commands(command: Command) -> Result<String, UserError> {
             };
             Ok(serde_json::to_string(&out).map_err(|e| UserError(e.to_string()))?)
         }
-        Command::Presets { .. } | Command::Run { .. } | Command::Report { .. } => {
-            Err(UserError("internal: not a field command".into()))
-        }
+        Command::Presets { .. }
+        | Command::Run { .. }
+        | Command::Report { .. }
+        | Command::Bench { .. } => Err(UserError("internal: not a field command".into())),
     }
 }
 
@@ -500,6 +528,53 @@ fn run_command(
             .filter_map(|f| f.file_name().map(|n| n.to_string_lossy().into_owned())),
     );
     Ok(run_digest(&record, &folder, &files))
+}
+
+fn bench_command(
+    out: Option<&Path>,
+    quick: bool,
+    rerun_baseline: bool,
+    python: String,
+    quiet: bool,
+) -> Result<String, CliError> {
+    let folder = output::choose_folder(out, "bench").map_err(CliError::Input)?;
+    let staging = output::Staging::new(&folder).map_err(CliError::Failed)?;
+    let mut options = crate::bench::BenchOptions::new(staging.path());
+    if quick {
+        options = options.quick();
+    }
+    options.rerun_baseline = rerun_baseline;
+    options.python = python;
+    // A spinner with the current step on a terminal; nothing on a pipe or with --quiet.
+    let bar = if quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr())
+    };
+    let report = crate::bench::run_bench(&options, &mut |line| {
+        bar.set_message(line.to_string());
+        bar.tick();
+    });
+    bar.finish_and_clear();
+    let report = report.map_err(|e| CliError::Failed(format!("bench: {e}")))?;
+    let folder = staging.commit().map_err(CliError::Failed)?;
+    if quiet {
+        return Ok(String::new());
+    }
+    let mut lines = vec![format!(
+        "wrote {}/: {} files ({}; baseline: {})",
+        folder.display(),
+        report.files.len(),
+        if quick { "quick sweeps" } else { "full sweeps" },
+        report.baseline_source
+    )];
+    for s in &report.speedups {
+        lines.push(format!(
+            "{}: {:.3e} s (paper's method) / {:.3e} s (surfgrav) = {:.0}×",
+            s.task, s.baseline_seconds, s.surfgrav_seconds, s.ratio
+        ));
+    }
+    Ok(lines.join("\n"))
 }
 
 /// What `surfgrav run` prints: the folder, its files and the key numbers.

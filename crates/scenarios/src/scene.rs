@@ -41,6 +41,28 @@
 //!
 //! Every error says where: [`SceneError`] carries the file, the line (when the fault can be
 //! placed), the field and what to change.
+//!
+//! From a file to a run, as `surfgrav run` does it (without the output folder):
+//!
+//! ```
+//! use surfgrav_scenarios::{presets, scene::SceneFile, simulate::run_scene};
+//!
+//! // Start from a preset's text, as `surfgrav presets --show paper-2s` prints it.
+//! let text = presets::find("paper-2s").unwrap().toml.replace("t_end = 300.0", "t_end = 100.0");
+//! let scene = SceneFile::parse(&text, "my-scene.toml")?.build(&text, "my-scene.toml")?;
+//! let run = run_scene(&scene)?;
+//! assert_eq!(run.summary.steps, 1000);
+//! assert!((run.orbit.minimum_separation.unwrap() - 2.5472).abs() < 1e-4);
+//!
+//! // A bad value is refused with the file, the line, the field and what to change.
+//! let bad = text.replace("polar_radius = 0.25", "polar_radius = -0.25");
+//! let error = SceneFile::parse(&bad, "my-scene.toml")?.build(&bad, "my-scene.toml").unwrap_err();
+//! assert_eq!(
+//!     error.to_string(),
+//!     "my-scene.toml:11: body_a.polar_radius: must be a positive finite length, got -0.25"
+//! );
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 use std::fmt;
 use std::path::Path;

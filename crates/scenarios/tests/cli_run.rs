@@ -383,6 +383,12 @@ fn bad_input_is_one_line_exit_2_and_no_folder() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("already exists"), "{}", stderr(&out));
     assert_eq!(entries(&dir.join("taken")), ["keep.txt"]);
+    for command in ["report", "bench"] {
+        let out = surfgrav_in(&dir, &[command, "--out", "taken"]);
+        assert_eq!(out.status.code(), Some(2), "{command}");
+        assert!(stderr(&out).contains("already exists"), "{}", stderr(&out));
+        assert_eq!(entries(&dir.join("taken")), ["keep.txt"]);
+    }
     fs::remove_dir_all(&dir).unwrap();
 }
 
