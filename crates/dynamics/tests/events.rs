@@ -243,3 +243,56 @@ fn torques_are_refused() {
         )
         .is_ok());
 }
+
+/// Evenly spaced output stops at the contact: every emitted time is at or before the contact
+/// time, every emitted state is clear of overlap (to the contact's round-off), for the default
+/// (Hermite) path and DOP853's own dense output; a bad interval is a typed error.
+#[test]
+fn even_output_stops_at_contact() {
+    let model = CentralPair::new(1.0, 1.0, |r: Real| -1.0 / r, |r: Real| 1.0 / (r * r))
+        .unwrap()
+        .with_contact_distance(1.0)
+        .unwrap();
+    let expected = fall_time(3.0, 1.0, 2.0);
+    for mut integrator in [
+        Box::new(FixedStep::new(FixedScheme::RungeKutta4, 0.01).unwrap()) as Box<dyn Integrator>,
+        Box::new(Adaptive::dop853(1e-12, 1e-12).unwrap()),
+    ] {
+        let mut emitted: Vec<(Real, Real)> = Vec::new();
+        let summary = integrator
+            .integrate_with_output(
+                &model,
+                &at_rest(3.0),
+                0.0,
+                10.0,
+                0.25,
+                &mut |_| {},
+                &mut |t, state| emitted.push((t, state.separation())),
+            )
+            .unwrap();
+        let Termination::Contact(event) = summary.termination else {
+            panic!("{}: no contact", integrator.name());
+        };
+        let (last_time, _) = *emitted.last().unwrap();
+        println!(
+            "{}: {} outputs, last at {last_time}, contact at {:.12}",
+            integrator.name(),
+            emitted.len(),
+            event.sample.time
+        );
+        assert_eq!(emitted.len(), (expected / 0.25) as usize + 1);
+        assert!(last_time <= event.sample.time);
+        assert!(emitted.iter().all(|(_, r)| *r >= 1.0 - 1e-12));
+        assert!(integrator
+            .integrate_with_output(
+                &model,
+                &at_rest(3.0),
+                0.0,
+                1.0,
+                0.0,
+                &mut |_| {},
+                &mut |_, _| {}
+            )
+            .is_err());
+    }
+}
