@@ -246,6 +246,8 @@ pub struct BenchReport {
     pub speedups: Vec<Speedup>,
     /// Where the baseline figures come from (committed file and its date, or this sitting).
     pub baseline_source: String,
+    /// What makes the figures less trustworthy (a debug build).
+    pub warnings: Vec<String>,
     /// Every file written.
     pub files: Vec<PathBuf>,
 }
@@ -264,6 +266,10 @@ pub fn run_bench(
     progress(&format!("baseline: {baseline_source}"));
 
     let interaction = interaction_bench(options, progress)?;
+    let warnings = build_warnings(&interaction);
+    for w in &warnings {
+        progress(&format!("warning: {w}"));
+    }
     let mut dynamics = Vec::new();
     // The direct engine's short run covers the baseline's shortened run (same steps).
     let short_t_end = baseline.rk4_step.map_or(3.0, |(_, t)| t);
@@ -310,7 +316,7 @@ pub fn run_bench(
     )?);
     files.push(write_text(
         &out.join("speedup.md"),
-        &speedup_markdown(&speedups, &baseline_source),
+        &speedup_markdown(&speedups, &baseline_source, &warnings),
     )?);
     files.push(write_text(
         &out.join("speedup.csv"),
@@ -345,6 +351,7 @@ pub fn run_bench(
         dynamics,
         speedups,
         baseline_source,
+        warnings,
         files,
     })
 }
@@ -352,6 +359,9 @@ pub fn run_bench(
 /// A short text for a terminal: where the baseline came from, the speed-ups, the files.
 pub fn summary(report: &BenchReport) -> String {
     let mut s = String::new();
+    for w in &report.warnings {
+        let _ = writeln!(s, "Warning: {w}.");
+    }
     let _ = writeln!(s, "Baseline: {}.", report.baseline_source);
     let _ = writeln!(
         s,
@@ -1069,7 +1079,7 @@ fn load_baseline(
     if !options.rerun_baseline {
         return Ok((
             baseline,
-            format!("{committed_source}; not re-run (--baseline re-runs it in this sitting)"),
+            format!("{committed_source}; not re-run (`surfgrav bench --rerun-baseline` re-runs it in the same sitting)"),
         ));
     }
     match rerun_baseline(options, progress) {
@@ -1441,8 +1451,36 @@ fn dynamics_csv(rows: &[DynamicsRow]) -> String {
     s
 }
 
-fn speedup_markdown(rows: &[Speedup], source: &str) -> String {
+/// Time of one interaction with the 130-node table (AH single table, t = 10) at separation 3
+/// above which the build is taken to be unoptimised: 10 µs in a release build on the build
+/// machine, 300 µs in a debug build; the threshold leaves a factor 6 for a slower or busier
+/// machine.
+const UNOPTIMISED_SECONDS: f64 = 60e-6;
+
+/// Warnings about how this binary was built: a debug build (`cfg(debug_assertions)`) whose
+/// calibration interaction is slow is unoptimised (this workspace's test profile keeps debug
+/// assertions but optimises, so the assertion flag alone does not tell).
+fn build_warnings(interaction: &[InteractionRow]) -> Vec<String> {
+    let calibration = interaction
+        .iter()
+        .find(|r| r.separation == 3.0 && r.family == "AH single table" && r.setting == "t = 10")
+        .map(|r| r.seconds);
+    match calibration {
+        Some(t) if cfg!(debug_assertions) && t > UNOPTIMISED_SECONDS => vec![format!(
+            "surfgrav's code is unoptimised (a debug build, e.g. `cargo run` without \
+             `--release`): one 130-node interaction took {:.0} µs against about 10 µs in a \
+             release build, so every surfgrav time here is too long and every speed-up too small",
+            t * 1e6
+        )],
+        _ => Vec::new(),
+    }
+}
+
+fn speedup_markdown(rows: &[Speedup], source: &str, warnings: &[String]) -> String {
     let mut s = String::new();
+    for w in warnings {
+        let _ = writeln!(s, "**Warning: {w}.**\n");
+    }
     let _ = writeln!(
         s,
         "# Speed-up over the paper's method\n\nBaseline: {source}. Ratio = the paper's method's seconds / surfgrav's seconds for the same task, both on this kind of machine (surfgrav measured now).\n"
