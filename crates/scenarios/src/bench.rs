@@ -543,7 +543,7 @@ fn rule_variants(quick: bool) -> Vec<(String, String, InteractionOptions)> {
     }
     for &tol in tolerances {
         out.push((
-            "adaptive".into(),
+            "adaptive G7K15 (PA form)".into(),
             format!("tol {tol:.0e}"),
             InteractionOptions {
                 method: MethodChoice::Adaptive,

@@ -629,3 +629,49 @@ fn paper_figures_are_written() {
     }
     cleanup(&dir);
 }
+
+#[test]
+fn many_series_and_single_points_are_drawn_and_listed() {
+    let dir = folder("many");
+    // Twelve sweeps (more than the ten colours: the last two get another marker shape) and a
+    // one-point line series, which must still be visible (drawn as a dot).
+    let mut all: Vec<Series> = (0..12)
+        .map(|k| {
+            series(
+                &format!("sweep {k}"),
+                (1..6)
+                    .map(|i| (i as f64 * 1e-5, 10f64.powi(-(i * (k + 1)) % 16 - 1)))
+                    .collect(),
+                Style::LinePoints,
+            )
+        })
+        .collect();
+    all.push(series("one point", vec![(2e-5, 1e-9)], Style::Line));
+    let fig = Figure {
+        title: "many".into(),
+        panels: vec![Panel::Log {
+            lines: lines("log-log", "time (s)", "error", all),
+            log_x: true,
+            log_y: true,
+        }],
+        columns: 1,
+    };
+    let paths = write_figure(&fig, &dir.join("many")).unwrap();
+    let svg = std::fs::read_to_string(&paths[1]).unwrap();
+    let texts = svg_texts(&svg);
+    for k in 0..12 {
+        let label = format!("sweep {k}");
+        assert!(texts.contains(&label), "{label} missing");
+    }
+    assert!(texts.contains(&"one point".to_string()));
+    // Markers: circles for the first ten series, squares after.
+    assert!(svg.contains("<circle"), "no circle markers");
+    // Series 10 and 11: five squares each plus their legend samples (the background adds one
+    // more rectangle).
+    let rects = svg.matches("<rect").count();
+    assert!(
+        rects >= 2 * 5 + 2,
+        "only {rects} rectangles: no square markers"
+    );
+    cleanup(&dir);
+}
