@@ -2,10 +2,14 @@
 //! and histograms.
 //!
 //! A [`Figure`] is a grid of [`Panel`]s with `columns` columns and one overall title.
-//! [`write_figure`] draws it twice, to `<stem>.png` (clean anti-aliased raster) and to
-//! `<stem>.svg` (text stays text, so labels can be searched; plotters snaps SVG coordinates to
-//! whole pixels, so curves there look slightly jagged). Text uses the embedded DejaVu Sans font,
-//! so no system font library is needed.
+//! [`write_figure`] draws it twice, to `<stem>.png` and to `<stem>.svg` (text stays text, so
+//! labels can be searched; plotters snaps SVG coordinates to whole pixels, so curves there look
+//! slightly jagged). The PNG is drawn at twice its size and each 2 × 2 block averaged: plotters'
+//! raster lines have whole-pixel vertices and wide lines no anti-aliasing, and the averaging
+//! smooths both. Polylines are drawn segment by segment in the PNG (plotters turns a wide
+//! polyline into one polygon, which spikes where a noisy series zig-zags). Series are thinned
+//! to what the pixels can show (see `thin`), so a 30,000-step time series stays a small SVG.
+//! Text uses the embedded DejaVu Sans font, so no system font library is needed.
 //!
 //! # Data checks
 //!
@@ -81,6 +85,28 @@ const PALETTE: [RGBColor; 10] = [
     RGBColor(153, 153, 51),  // olive
 ];
 
+/// The PNG is drawn at this multiple of its size and averaged down (anti-aliased curves;
+/// plotters' raster lines have whole-pixel vertices).
+const SUPERSAMPLE: u32 = 2;
+
+thread_local! {
+    /// Pixels per layout pixel of the figure being drawn (1 for SVG, [`SUPERSAMPLE`] for PNG).
+    static SCALE: std::cell::Cell<f64> = const { std::cell::Cell::new(1.0) };
+}
+
+/// A length in layout pixels, in drawn pixels.
+fn px(v: f64) -> f64 {
+    v * SCALE.with(|s| s.get())
+}
+
+fn pxi(v: i32) -> i32 {
+    px(v as f64).round() as i32
+}
+
+fn pxu(v: u32) -> u32 {
+    px(v as f64).round() as u32
+}
+
 /// Colour and marker shape of series `k`.
 fn look(k: usize) -> (RGBColor, usize) {
     (PALETTE[k % PALETTE.len()], k / PALETTE.len())
@@ -97,11 +123,12 @@ where
     CT::From: Clone,
 {
     let style = colour.filled();
+    let (r, t) = (pxi(3), pxi(4));
     match shape % 3 {
-        0 => area.draw(&(EmptyElement::at(at) + plotters::element::Circle::new((0, 0), 3, style))),
-        1 => area.draw(&(EmptyElement::at(at) + Rectangle::new([(-3, -3), (3, 3)], style))),
+        0 => area.draw(&(EmptyElement::at(at) + plotters::element::Circle::new((0, 0), r, style))),
+        1 => area.draw(&(EmptyElement::at(at) + Rectangle::new([(-r, -r), (r, r)], style))),
         _ => {
-            area.draw(&(EmptyElement::at(at) + Polygon::new(vec![(0, -4), (4, 3), (-4, 3)], style)))
+            area.draw(&(EmptyElement::at(at) + Polygon::new(vec![(0, -t), (t, r), (-t, r)], style)))
         }
     }
     .map_err(err)
@@ -303,7 +330,7 @@ pub fn write_figure(figure: &Figure, stem: &Path) -> Result<Vec<PathBuf>, PlotEr
     let mut text = String::new();
     {
         let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
-        draw_figure(&root, &prepared, Target::Svg).map_err(|message| PlotError::Backend {
+        draw_figure(&root, &prepared, Target::Svg, 1.0).map_err(|message| PlotError::Backend {
             path: svg.clone(),
             message,
         })?;
@@ -317,18 +344,50 @@ pub fn write_figure(figure: &Figure, stem: &Path) -> Result<Vec<PathBuf>, PlotEr
         source,
     })?;
 
+    let backend_error = |message: String| PlotError::Backend {
+        path: png.clone(),
+        message,
+    };
+    let big_size = (size.0 * SUPERSAMPLE, size.1 * SUPERSAMPLE);
+    let mut big = vec![0u8; 3 * big_size.0 as usize * big_size.1 as usize];
     {
-        let root = BitMapBackend::new(&png, size).into_drawing_area();
-        draw_figure(&root, &prepared, Target::Png).map_err(|message| PlotError::Backend {
-            path: png.clone(),
-            message,
-        })?;
-        root.present().map_err(|e| PlotError::Backend {
-            path: png.clone(),
-            message: e.to_string(),
-        })?;
+        let root = BitMapBackend::with_buffer(&mut big, big_size).into_drawing_area();
+        draw_figure(&root, &prepared, Target::Png, SUPERSAMPLE as f64).map_err(backend_error)?;
+        root.present().map_err(|e| backend_error(e.to_string()))?;
+    }
+    let small = downsample(&big, size, SUPERSAMPLE);
+    {
+        let mut backend = BitMapBackend::new(&png, size);
+        backend
+            .blit_bitmap((0, 0), size, &small)
+            .map_err(|e| backend_error(e.to_string()))?;
+        backend
+            .present()
+            .map_err(|e| backend_error(e.to_string()))?;
     }
     Ok(vec![png, svg])
+}
+
+/// Averages `factor` × `factor` blocks of an RGB image of `size` × `factor` pixels.
+fn downsample(big: &[u8], size: (u32, u32), factor: u32) -> Vec<u8> {
+    let (w, h) = (size.0 as usize, size.1 as usize);
+    let f = factor as usize;
+    let big_w = w * f;
+    let mut out = vec![0u8; 3 * w * h];
+    for y in 0..h {
+        for x in 0..w {
+            for c in 0..3 {
+                let mut sum = 0u32;
+                for dy in 0..f {
+                    for dx in 0..f {
+                        sum += big[3 * ((y * f + dy) * big_w + x * f + dx) + c] as u32;
+                    }
+                }
+                out[3 * (y * w + x) + c] = ((sum + (f * f / 2) as u32) / (f * f) as u32) as u8;
+            }
+        }
+    }
+    out
 }
 
 fn with_extension(stem: &Path, ext: &str) -> PathBuf {
@@ -907,26 +966,44 @@ enum Target {
     Png,
 }
 
+/// Sets [`SCALE`] while it lives.
+struct ScaleGuard;
+
+impl ScaleGuard {
+    fn set(scale: f64) -> Self {
+        SCALE.with(|s| s.set(scale));
+        ScaleGuard
+    }
+}
+
+impl Drop for ScaleGuard {
+    fn drop(&mut self) {
+        SCALE.with(|s| s.set(1.0));
+    }
+}
+
 fn draw_figure<DB: DrawingBackend>(
     root: &Area<'_, DB>,
     fig: &Prepared,
     target: Target,
+    scale: f64,
 ) -> Result<(), String> {
     register_fonts()?;
+    let _scale = ScaleGuard::set(scale);
     root.fill(&WHITE).map_err(err)?;
-    let (title_band, body) = root.split_vertically(TITLE_HEIGHT);
+    let (title_band, body) = root.split_vertically(pxu(TITLE_HEIGHT));
     let (w, h) = title_band.dim_in_pixel();
     title_band
         .draw(&Text::new(
             fig.title.clone(),
             (w as i32 / 2, h as i32 / 2),
-            TextStyle::from((FONT, FIGURE_TITLE_SIZE, FontStyle::Bold).into_font())
+            TextStyle::from((FONT, px(FIGURE_TITLE_SIZE), FontStyle::Bold).into_font())
                 .pos(Pos::new(HPos::Center, VPos::Center)),
         ))
         .map_err(err)?;
     let cells = body.split_evenly((fig.rows, fig.columns));
     for (panel, cell) in fig.panels.iter().zip(cells.iter()) {
-        let cell = cell.margin(8, 8, 8, 14);
+        let cell = cell.margin(pxu(8), pxu(8), pxu(8), pxu(14));
         match panel {
             PreparedPanel::Lines(p) => draw_lines(&cell, p, target)?,
             PreparedPanel::Histogram(p) => draw_histogram(&cell, p)?,
@@ -942,9 +1019,9 @@ const X_AXIS_BAND: u32 = 62;
 fn y_band(labels: &[String]) -> u32 {
     let w = labels
         .iter()
-        .map(|l| text_width(l, TICK_SIZE))
+        .map(|l| text_width(l, px(TICK_SIZE)))
         .fold(0.0, f64::max);
-    (w + 18.0 + AXIS_TITLE_SIZE + 18.0).ceil() as u32
+    (w + px(18.0 + AXIS_TITLE_SIZE + 18.0)).ceil() as u32
 }
 
 struct LegendEntry {
@@ -1012,10 +1089,10 @@ fn split_legend<'a, DB: DrawingBackend>(
     }
     let text = entries
         .iter()
-        .map(|e| text_width(&e.label, LEGEND_SIZE))
+        .map(|e| text_width(&e.label, px(LEGEND_SIZE)))
         .fold(0.0, f64::max);
     let (w, _) = area.dim_in_pixel();
-    let want = text as u32 + LEGEND_SAMPLE as u32 + 30;
+    let want = text as u32 + pxu(LEGEND_SAMPLE as u32 + 30);
     let legend_w = want.min(w * 2 / 5);
     let (left, right) = area.split_horizontally(w - legend_w);
     (left, Some(right))
@@ -1027,51 +1104,44 @@ fn draw_legend<DB: DrawingBackend>(
     top: i32,
 ) -> Result<(), String> {
     let (w, _) = area.dim_in_pixel();
-    let line_h = (LEGEND_SIZE * 1.6) as i32;
-    let x0 = 12;
-    let max_text = w as f64 - (x0 + LEGEND_SAMPLE + 10) as f64;
+    let line_h = px(LEGEND_SIZE * 1.6) as i32;
+    let x0 = pxi(12);
+    let sample = pxi(LEGEND_SAMPLE);
+    let max_text = w as f64 - (x0 + sample + pxi(10)) as f64;
     for (i, e) in entries.iter().enumerate() {
-        let y = top + 8 + i as i32 * line_h + line_h / 2;
-        let style = ShapeStyle::from(e.colour).stroke_width(2);
+        let y = pxi(top + 8) + i as i32 * line_h + line_h / 2;
+        let style = ShapeStyle::from(e.colour).stroke_width(pxu(2));
         match e.kind {
             LegendKind::Line => area
-                .draw(&PathElement::new(
-                    vec![(x0, y), (x0 + LEGEND_SAMPLE, y)],
-                    style,
-                ))
+                .draw(&PathElement::new(vec![(x0, y), (x0 + sample, y)], style))
                 .map_err(err)?,
             LegendKind::LinePoints => {
-                area.draw(&PathElement::new(
-                    vec![(x0, y), (x0 + LEGEND_SAMPLE, y)],
-                    style,
-                ))
-                .map_err(err)?;
-                draw_marker(area, (x0 + LEGEND_SAMPLE / 2, y), e.shape, e.colour)?;
+                area.draw(&PathElement::new(vec![(x0, y), (x0 + sample, y)], style))
+                    .map_err(err)?;
+                draw_marker(area, (x0 + sample / 2, y), e.shape, e.colour)?;
             }
             LegendKind::Dashed | LegendKind::Circle => {
                 let style = if matches!(e.kind, LegendKind::Circle) {
-                    ShapeStyle::from(e.colour).stroke_width(1)
+                    ShapeStyle::from(e.colour).stroke_width(pxu(1))
                 } else {
                     style
                 };
                 let (dash, gap) = dash_pattern(e.kind);
                 let mut x = x0;
-                while x < x0 + LEGEND_SAMPLE {
-                    let x1 = (x + dash).min(x0 + LEGEND_SAMPLE);
+                while x < x0 + sample {
+                    let x1 = (x + dash).min(x0 + sample);
                     area.draw(&PathElement::new(vec![(x, y), (x1, y)], style))
                         .map_err(err)?;
                     x += dash + gap;
                 }
             }
-            LegendKind::Points => {
-                draw_marker(area, (x0 + LEGEND_SAMPLE / 2, y), e.shape, e.colour)?
-            }
+            LegendKind::Points => draw_marker(area, (x0 + sample / 2, y), e.shape, e.colour)?,
         }
         let label = shorten(&e.label, max_text);
         area.draw(&Text::new(
             label,
-            (x0 + LEGEND_SAMPLE + 8, y),
-            TextStyle::from((FONT, LEGEND_SIZE).into_font())
+            (x0 + sample + pxi(8), y),
+            TextStyle::from((FONT, px(LEGEND_SIZE)).into_font())
                 .pos(Pos::new(HPos::Left, VPos::Center)),
         ))
         .map_err(err)?;
@@ -1081,14 +1151,14 @@ fn draw_legend<DB: DrawingBackend>(
 
 /// Cuts a label to fit `max_width` pixels, ending it with "…".
 fn shorten(text: &str, max_width: f64) -> String {
-    if text_width(text, LEGEND_SIZE) <= max_width {
+    if text_width(text, px(LEGEND_SIZE)) <= max_width {
         return text.to_string();
     }
     let mut chars: Vec<char> = text.chars().collect();
     while !chars.is_empty() {
         chars.pop();
         let s: String = chars.iter().collect::<String>() + "…";
-        if text_width(&s, LEGEND_SIZE) <= max_width {
+        if text_width(&s, px(LEGEND_SIZE)) <= max_width {
             return s;
         }
     }
@@ -1097,8 +1167,8 @@ fn shorten(text: &str, max_width: f64) -> String {
 
 fn dash_pattern(kind: LegendKind) -> (i32, i32) {
     match kind {
-        LegendKind::Circle => (6, 4),
-        _ => (10, 6),
+        LegendKind::Circle => (pxi(6), pxi(4)),
+        _ => (pxi(10), pxi(6)),
     }
 }
 
@@ -1107,13 +1177,13 @@ fn titled<'a, DB: DrawingBackend>(
     area: &Area<'a, DB>,
     title: &str,
 ) -> Result<Area<'a, DB>, String> {
-    let band = (PANEL_TITLE_SIZE * 1.7) as u32;
+    let band = px(PANEL_TITLE_SIZE * 1.7) as u32;
     let (top, rest) = area.split_vertically(band);
     let (w, h) = top.dim_in_pixel();
     top.draw(&Text::new(
         title.to_string(),
         (w as i32 / 2, h as i32 / 2),
-        TextStyle::from((FONT, PANEL_TITLE_SIZE).into_font())
+        TextStyle::from((FONT, px(PANEL_TITLE_SIZE)).into_font())
             .pos(Pos::new(HPos::Center, VPos::Center)),
     ))
     .map_err(err)?;
@@ -1158,25 +1228,27 @@ fn draw_lines<DB: DrawingBackend>(
             (x, y)
         }
     };
-    let plot_h = (ah.saturating_sub(X_AXIS_BAND + 10)).max(40) as f64;
-    let guess_w = (aw.saturating_sub(90)).max(40) as f64;
+    // Axes are laid out in layout pixels (tick label widths at the unscaled font size).
+    let layout = |pixels: u32| pixels as f64 / px(1.0);
+    let plot_h = layout(ah.saturating_sub(pxu(X_AXIS_BAND + 10)).max(pxu(40)));
+    let guess_w = layout(aw.saturating_sub(pxu(90)).max(pxu(40)));
     let (_, y_axis) = build(guess_w, plot_h);
     let band = y_band(&y_axis.labels);
-    let plot_w = (aw.saturating_sub(band + 16)).max(40) as f64;
+    let plot_w = layout(aw.saturating_sub(band + pxu(16)).max(pxu(40)));
     let (mut x_axis, mut y_axis) = build(plot_w, plot_h);
     // The y labels may have changed width with the new range; keep the band wide enough.
     let band = band.max(y_band(&y_axis.labels));
     if p.equal_aspect {
-        let plot_w = (aw.saturating_sub(band + 16)).max(40) as f64;
+        let plot_w = layout(aw.saturating_sub(band + pxu(16)).max(pxu(40)));
         let axes = build(plot_w, plot_h);
         x_axis = axes.0;
         y_axis = axes.1;
     }
 
     let mut chart = ChartBuilder::on(&plot_area)
-        .margin_top(10)
-        .margin_right(16)
-        .x_label_area_size(X_AXIS_BAND)
+        .margin_top(pxu(10))
+        .margin_right(pxu(16))
+        .x_label_area_size(pxu(X_AXIS_BAND))
         .y_label_area_size(band)
         .build_cartesian_2d(coord(&x_axis), coord(&y_axis))
         .map_err(err)?;
@@ -1220,11 +1292,11 @@ fn draw_lines<DB: DrawingBackend>(
         match style {
             Style::Line | Style::LinePoints if target == Target::Svg => {
                 chart
-                    .draw_series(LineSeries::new(pts, colour.stroke_width(2)))
+                    .draw_series(LineSeries::new(pts, colour.stroke_width(pxu(2))))
                     .map_err(err)?;
             }
             Style::Line | Style::LinePoints => {
-                let line = colour.stroke_width(2);
+                let line = colour.stroke_width(pxu(2));
                 chart
                     .draw_series(
                         thinned
@@ -1235,7 +1307,12 @@ fn draw_lines<DB: DrawingBackend>(
             }
             Style::Dashed => {
                 chart
-                    .draw_series(DashedLineSeries::new(pts, 10, 6, colour.stroke_width(2)))
+                    .draw_series(DashedLineSeries::new(
+                        pts,
+                        pxi(10),
+                        pxi(6),
+                        colour.stroke_width(pxu(2)),
+                    ))
                     .map_err(err)?;
             }
             Style::Points => dots(&mut pts.clone())?,
@@ -1261,7 +1338,7 @@ fn draw_lines<DB: DrawingBackend>(
                 outline,
                 dash,
                 gap,
-                colour.stroke_width(1),
+                colour.stroke_width(pxu(1)),
             ))
             .map_err(err)?;
     }
@@ -1388,11 +1465,12 @@ fn configure_mesh<DB: DrawingBackend>(
         .y_desc(y_axis.title.clone())
         .x_label_formatter(&fx)
         .y_label_formatter(&fy)
-        .label_style((FONT, TICK_SIZE))
-        .axis_desc_style((FONT, AXIS_TITLE_SIZE))
-        .bold_line_style(RGBColor(200, 200, 200).stroke_width(1))
-        .light_line_style(RGBColor(235, 235, 235).stroke_width(1))
-        .axis_style(RGBColor(60, 60, 60))
+        .label_style((FONT, px(TICK_SIZE)))
+        .axis_desc_style((FONT, px(AXIS_TITLE_SIZE)))
+        .bold_line_style(RGBColor(200, 200, 200).stroke_width(pxu(1)))
+        .light_line_style(RGBColor(235, 235, 235).stroke_width(pxu(1)))
+        .axis_style(RGBColor(60, 60, 60).stroke_width(pxu(1)))
+        .set_all_tick_mark_size(pxi(5))
         .draw()
         .map_err(err)
 }
@@ -1404,25 +1482,26 @@ fn draw_histogram<DB: DrawingBackend>(
     let body = titled(cell, &p.title)?;
     let (aw, ah) = body.dim_in_pixel();
     let max_count = p.counts.iter().copied().max().unwrap_or(0).max(1) as f64;
-    let plot_h = (ah.saturating_sub(X_AXIS_BAND + 10)).max(40) as f64;
+    let layout = |pixels: u32| pixels as f64 / px(1.0);
+    let plot_h = layout(ah.saturating_sub(pxu(X_AXIS_BAND + 10)).max(pxu(40)));
     let y_axis = linear_axis_on(0.0, max_count * 1.08, plot_h, false, &p.y_label, 0.0);
     // Counts are integers: drop fractional ticks.
     let y_axis = integer_ticks(y_axis);
     let band = y_band(&y_axis.labels);
-    let plot_w = (aw.saturating_sub(band + 16)).max(40) as f64;
+    let plot_w = layout(aw.saturating_sub(band + pxu(16)).max(pxu(40)));
     let x_axis = linear_axis(p.bounds.0, p.bounds.1, plot_w, true, &p.x_label);
 
     let mut chart = ChartBuilder::on(&body)
-        .margin_top(10)
-        .margin_right(16)
-        .x_label_area_size(X_AXIS_BAND)
+        .margin_top(pxu(10))
+        .margin_right(pxu(16))
+        .x_label_area_size(pxu(X_AXIS_BAND))
         .y_label_area_size(band)
         .build_cartesian_2d(coord(&x_axis), coord(&y_axis))
         .map_err(err)?;
     configure_mesh(&mut chart, &x_axis, &y_axis)?;
     let off = x_axis.offset;
     let fill = PALETTE[0].mix(0.75).filled();
-    let edge = PALETTE[0].stroke_width(1);
+    let edge = PALETTE[0].stroke_width(pxu(1));
     for (i, &n) in p.counts.iter().enumerate() {
         if n == 0 {
             continue;
