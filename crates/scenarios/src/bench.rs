@@ -1298,6 +1298,11 @@ fn speedups(
 // ---------------------------------------------------------------------------------------------
 // Tables.
 
+/// Text for a Markdown table cell: a `|` would end the cell.
+fn md_cell(s: &str) -> String {
+    s.replace('|', "\\|")
+}
+
 fn csv_field(s: &str) -> String {
     if s.contains([',', '"', '\n']) {
         format!("\"{}\"", s.replace('"', "\"\""))
@@ -1424,7 +1429,7 @@ fn dynamics_markdown(rows: &[DynamicsRow], table_seconds: f64, spreads: [f64; 2]
                 r.wall_seconds,
                 opt_md(r.energy_error),
                 opt_md(r.trajectory_error),
-                r.termination
+                md_cell(&r.termination)
             );
         }
     }
@@ -1498,7 +1503,11 @@ fn speedup_markdown(rows: &[Speedup], source: &str, warnings: &[String]) -> Stri
         let _ = writeln!(
             s,
             "| {} | {:.3e} | {:.3e} | {:.0} | {} |",
-            r.task, r.baseline_seconds, r.surfgrav_seconds, r.ratio, r.note
+            md_cell(&r.task),
+            r.baseline_seconds,
+            r.surfgrav_seconds,
+            r.ratio,
+            md_cell(&r.note)
         );
     }
     s

@@ -144,6 +144,23 @@ fn check_bench(options: BenchOptions, out: &Path) {
     );
     let speedup_md = std::fs::read_to_string(out.join("speedup.md")).unwrap();
     assert!(speedup_md.contains("committed"), "{speedup_md}");
+    // Every Markdown table row has as many cell separators as its header (a `|` inside a
+    // cell, as in "max |ΔE/E0|", must be escaped).
+    for name in ["speedup.md", "interaction.md", "dynamics.md"] {
+        let text = std::fs::read_to_string(out.join(name)).unwrap();
+        let mut columns = None;
+        for line in text.lines() {
+            if !line.starts_with('|') {
+                columns = None;
+                continue;
+            }
+            let separators = line.matches('|').count() - line.matches("\\|").count();
+            match columns {
+                None => columns = Some(separators),
+                Some(c) => assert_eq!(separators, c, "{name}: {line}"),
+            }
+        }
+    }
 }
 
 /// `--baseline`: the paper's method is re-run in the same sitting when `python3` with scipy is
