@@ -762,8 +762,9 @@ impl Integrator for FixedStep {
     }
 }
 
-/// The embedded Runge–Kutta pairs of [`Adaptive`] (tableaux and error estimators in the private
-/// `tableau` module's documentation).
+/// The embedded Runge–Kutta pairs of [`Adaptive`] (error norms and step control in this
+/// module's documentation; the tableaux, their sources and the order-condition tests in
+/// `src/tableau.rs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum EmbeddedPair {
