@@ -1,13 +1,15 @@
 //! Time per interaction (force + both torques + energy, certified to the default 1e-12) for the
 //! paper's pair of oblate spheroids (a = 1, c = 0.25, m = 1, common equatorial plane) at the
 //! separations of issue 3, with warm node-table caches; and the cost of a cold first call
-//! (node tables built) separately. Accuracy is proven by the tests, not here.
+//! (node tables built) separately; the nested doubling rule, the force-only evaluation and
+//! single fixed tables beside them. Accuracy is proven by the tests, and the error of each
+//! rule is printed by the `work_precision` example, not here.
 
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use surfgrav_potentials::{Pose, Spheroid, UniformDisk, Vec3};
-use surfgrav_surfaces::interaction::{Body, InteractionEngine};
+use surfgrav_surfaces::interaction::{Body, InteractionEngine, InteractionOptions, MethodChoice};
 
 fn paper_body() -> Body {
     Body::spheroid(Spheroid::new(1.0, 0.25, 1.0).unwrap()).unwrap()
@@ -29,6 +31,57 @@ fn interaction(c: &mut Criterion) {
             })
         });
     }
+    group.finish();
+
+    // The same pair by the other rules at the same tolerance: the nested doubling rule, the
+    // force-only evaluation (for integrator stages), and the cheapest single fixed tables
+    // reaching the nested rule's true error (from the work_precision example's summary).
+    let mut group = c.benchmark_group("paper_pair_rules_1e-12");
+    let mut nested = InteractionEngine::new(InteractionOptions {
+        method: MethodChoice::Nested,
+        ..InteractionOptions::default()
+    })
+    .unwrap();
+    for separation in [2.1, 2.55, 3.0, 7.0, 30.0] {
+        let pose_b = Pose::new(Vec3::new(separation, 0.0, 0.0), Vec3::zeros());
+        nested.interact(&a, &pose_a, &b, &pose_b).unwrap();
+        group.bench_function(format!("nested_separation_{separation}"), |bench| {
+            bench.iter(|| {
+                nested
+                    .interact(black_box(&a), &pose_a, black_box(&b), &pose_b)
+                    .unwrap()
+            })
+        });
+        group.bench_function(format!("force_only_separation_{separation}"), |bench| {
+            bench.iter(|| {
+                engine
+                    .force(black_box(&a), &pose_a, black_box(&b), &pose_b)
+                    .unwrap()
+            })
+        });
+    }
+    for (separation, transverse) in [(2.1, 17u16), (2.55, 12), (3.0, 10), (7.0, 10), (30.0, 5)] {
+        let pose_b = Pose::new(Vec3::new(separation, 0.0, 0.0), Vec3::zeros());
+        let mut single = InteractionEngine::new(InteractionOptions {
+            method: MethodChoice::FixedLevel(transverse),
+            ..InteractionOptions::default()
+        })
+        .unwrap();
+        single.interact(&a, &pose_a, &b, &pose_b).unwrap();
+        group.bench_function(
+            format!("single_table_t{transverse}_separation_{separation}"),
+            |bench| {
+                bench.iter(|| {
+                    single
+                        .interact(black_box(&a), &pose_a, black_box(&b), &pose_b)
+                        .unwrap()
+                })
+            },
+        );
+    }
+    group.finish();
+
+    let mut group = c.benchmark_group("paper_pair_1e-12_tilted");
     // Off the symmetry planes: B tilted and lifted, so no mirror plane halves the work.
     let pose_b = Pose::new(Vec3::new(2.4, 1.1, 0.5), Vec3::new(0.3, -0.2, 0.4));
     engine.interact(&a, &pose_a, &b, &pose_b).unwrap();

@@ -90,6 +90,16 @@ pub struct SolidSums {
     pub potential_moment_magnitude: Real,
     /// $\sum_k |\Phi_k\,\mathbf x_k\cdot\mathbf W_k| + |\tfrac12|\mathbf x_k|^2\,\mathbf a_k\cdot\mathbf W_k|$.
     pub energy_flux_magnitude: Real,
+    /// $\sum_k \mathbf x_k\,(\mathbf a_k\cdot\mathbf W_k) \approx \oint\mathbf x\,(\mathbf a\cdot\mathrm d\mathbf S)
+    /// = \int\mathbf a\,\mathrm dV$ (as $\nabla\cdot(\mathbf x\otimes\mathbf a) = \mathbf a$ where
+    /// $\nabla\cdot\mathbf a = 0$): the acceleration form of the force, free of the cancellation
+    /// of $\Phi_k - \Phi_0$ far from the source (the engine's `force_form` choice).
+    pub acceleration_flux: Vec3,
+    /// $\sum_k |\mathbf x_k|\,|\mathbf a_k\cdot\mathbf W_k|$.
+    pub acceleration_flux_magnitude: Real,
+    /// $\sum_k |\Phi_k|\,|\mathbf W_k|$: the scale of the rounding of $\Phi_k$ itself, which
+    /// $\Phi_k - \Phi_0$ keeps.
+    pub potential_magnitude: Real,
 }
 
 impl SolidSums {
@@ -102,6 +112,7 @@ impl SolidSums {
             potential_moment: reflect_axial(&self.potential_moment, axis),
             gradient_moment: reflect_axial(&self.gradient_moment, axis),
             energy_flux: self.energy_flux,
+            acceleration_flux: reflect_polar(&self.acceleration_flux, axis),
             ..*self
         }
     }
@@ -117,6 +128,10 @@ impl SolidSums {
             potential_moment_magnitude: self.potential_moment_magnitude
                 + other.potential_moment_magnitude,
             energy_flux_magnitude: self.energy_flux_magnitude + other.energy_flux_magnitude,
+            acceleration_flux: self.acceleration_flux + other.acceleration_flux,
+            acceleration_flux_magnitude: self.acceleration_flux_magnitude
+                + other.acceleration_flux_magnitude,
+            potential_magnitude: self.potential_magnitude + other.potential_magnitude,
         }
     }
 
@@ -218,6 +233,7 @@ pub(crate) fn solid_sums<P: Potential + ?Sized>(
         potential_flux_magnitude: flux_size,
         potential_moment_magnitude: moment_size,
         energy_flux_magnitude: energy_size,
+        ..SolidSums::default()
     }
 }
 
@@ -236,6 +252,10 @@ pub(crate) struct NodeConstants {
     w_norm: Real,
     /// $|\mathbf x\times\mathbf W|$.
     moment_norm: Real,
+    /// $\mathbf x$.
+    x: Vec3,
+    /// $|\mathbf x|$.
+    x_norm: Real,
 }
 
 /// A solid's node table with its per-node constants (the engine's cached form).
@@ -261,6 +281,8 @@ impl SolidTable {
                     x_dot_w: x.dot(w),
                     w_norm: w.norm(),
                     moment_norm: moment.norm(),
+                    x,
+                    x_norm: x.norm(),
                 }
             })
             .collect();
@@ -288,6 +310,8 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized>(
     let mut gradient_moment = CompensatedSum3::new();
     let mut energy = CompensatedSum::new();
     let (mut flux_size, mut moment_size, mut energy_size) = (0.0, 0.0, 0.0);
+    let mut acceleration_flux = CompensatedSum3::new();
+    let (mut acceleration_size, mut potential_size) = (0.0, 0.0);
     let reference = source.potential(&map.apply(&table.nodes.origin()));
     for ((block_points, block_weights), block_constants) in table
         .nodes
@@ -300,11 +324,16 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized>(
         let mut m = Vec3::zeros();
         let mut g = Vec3::zeros();
         let mut e = 0.0;
+        let mut af = Vec3::zeros();
         for ((r, w), k) in block_points.iter().zip(block_weights).zip(block_constants) {
             let field = source.field(&map.apply(r));
             let phi = field.potential;
             let a = map.back(&field.acceleration);
-            let (e_potential, e_gradient) = (phi * k.x_dot_w, k.half_x2 * a.dot(w));
+            let a_dot_w = a.dot(w);
+            let (e_potential, e_gradient) = (phi * k.x_dot_w, k.half_x2 * a_dot_w);
+            af += k.x * a_dot_w;
+            acceleration_size += k.x_norm * a_dot_w.abs();
+            potential_size += phi.abs() * k.w_norm;
             let relative = phi - reference;
             f += w * relative;
             m += k.moment * relative;
@@ -318,6 +347,7 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized>(
         moment.add(&m);
         gradient_moment.add(&g);
         energy.add(e);
+        acceleration_flux.add(&af);
     }
     SolidSums {
         potential_flux: flux.value(),
@@ -327,19 +357,22 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized>(
         potential_flux_magnitude: flux_size,
         potential_moment_magnitude: moment_size,
         energy_flux_magnitude: energy_size,
+        acceleration_flux: acceleration_flux.value(),
+        acceleration_flux_magnitude: acceleration_size,
+        potential_magnitude: potential_size,
     }
 }
 
-/// The force part of [`solid_table_sums`] alone: $\sum_k(\Phi_k - \Phi_0)\mathbf W_k$ and the
-/// size of its terms.
+/// The force parts of [`solid_table_sums`] alone (both forms and their sizes).
 #[inline(never)]
 pub(crate) fn solid_force_sums<P: Potential + ?Sized>(
     table: &SolidTable,
     source: &P,
     map: &FrameMap,
-) -> (Vec3, Real) {
+) -> SolidSums {
     let mut flux = CompensatedSum3::new();
-    let mut size = 0.0;
+    let mut acceleration_flux = CompensatedSum3::new();
+    let (mut size, mut acceleration_size, mut potential_size) = (0.0, 0.0, 0.0);
     let reference = source.potential(&map.apply(&table.nodes.origin()));
     for ((block_points, block_weights), block_constants) in table
         .nodes
@@ -349,14 +382,29 @@ pub(crate) fn solid_force_sums<P: Potential + ?Sized>(
         .zip(table.constants.chunks(BLOCK))
     {
         let mut f = Vec3::zeros();
+        let mut af = Vec3::zeros();
         for ((r, w), k) in block_points.iter().zip(block_weights).zip(block_constants) {
-            let relative = source.potential(&map.apply(r)) - reference;
+            let field = source.field(&map.apply(r));
+            let phi = field.potential;
+            let a_dot_w = map.back(&field.acceleration).dot(w);
+            let relative = phi - reference;
             f += w * relative;
+            af += k.x * a_dot_w;
             size += relative.abs() * k.w_norm;
+            acceleration_size += k.x_norm * a_dot_w.abs();
+            potential_size += phi.abs() * k.w_norm;
         }
         flux.add(&f);
+        acceleration_flux.add(&af);
     }
-    (flux.value(), size)
+    SolidSums {
+        potential_flux: flux.value(),
+        potential_flux_magnitude: size,
+        acceleration_flux: acceleration_flux.value(),
+        acceleration_flux_magnitude: acceleration_size,
+        potential_magnitude: potential_size,
+        ..SolidSums::default()
+    }
 }
 
 /// Force, torque (both forms) and energy of a homogeneous solid of density `density` whose

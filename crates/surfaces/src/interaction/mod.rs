@@ -112,6 +112,7 @@ mod kernel;
 pub mod nested;
 pub mod overlap;
 pub mod rules;
+pub mod work_precision;
 
 pub use body::{Body, BodyShape};
 pub use engine::{

@@ -135,9 +135,11 @@ pub(crate) fn rule_set(
 
 /// Components of the nested integrand: $\Phi - \Phi_0$ times $\mathrm d\mathbf S$ (3), times
 /// $\mathbf x\times\mathrm d\mathbf S$ (3), $\tfrac12|\mathbf x|^2\,\mathrm d\mathbf S\times\mathbf a$ (3),
-/// the energy integrand (1), and the magnitudes of the force, torque and energy terms for the
-/// rounding bound (3), as in [`super::kernel`]'s solid loop.
-pub(crate) const COMPONENTS: usize = 13;
+/// the energy integrand (1), the magnitudes of the force, torque and energy terms for the
+/// rounding bound (3), $\mathbf x\,(\mathbf a\cdot\mathrm d\mathbf S)$ (3) and the magnitudes
+/// $|\mathbf x||\mathbf a\cdot\mathrm d\mathbf S|$, $|\Phi||\mathrm d\mathbf S|$ (2), as in
+/// [`super::kernel`]'s solid loop.
+pub(crate) const COMPONENTS: usize = 18;
 
 /// Adds to `out` the sum over azimuth nodes `range` of height node `k` (and, with `mirror`,
 /// of its mirror image $-z$) of the integrand times the azimuth factor, for an ellipsoid of
@@ -174,7 +176,9 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized>(
         let half_x2 = 0.5 * r.norm_squared();
         let x_cross_w = r.cross(&w);
         let relative = phi - reference;
-        let (e_potential, e_gradient) = (phi * r.dot(&w), half_x2 * acceleration.dot(&w));
+        let a_dot_w = acceleration.dot(&w);
+        let (e_potential, e_gradient) = (phi * r.dot(&w), half_x2 * a_dot_w);
+        let w_norm = w.norm();
         let flux = w * relative;
         let moment = x_cross_w * relative;
         let gradient = w.cross(&acceleration) * half_x2;
@@ -188,9 +192,14 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized>(
         acc[7] += gradient.y;
         acc[8] += gradient.z;
         acc[9] += e_potential + e_gradient;
-        acc[10] += relative.abs() * w.norm();
+        acc[10] += relative.abs() * w_norm;
         acc[11] += relative.abs() * x_cross_w.norm();
         acc[12] += e_potential.abs() + e_gradient.abs();
+        acc[13] += r.x * a_dot_w;
+        acc[14] += r.y * a_dot_w;
+        acc[15] += r.z * a_dot_w;
+        acc[16] += r.norm() * a_dot_w.abs();
+        acc[17] += phi.abs() * w_norm;
     };
     for ((&f, &cp), &sp) in factors.iter().zip(cos).zip(sin) {
         let (rx, ry) = (a_s * cp, b_s * sp);
@@ -220,5 +229,8 @@ pub(crate) fn solid_sums_from(v: &[Real; COMPONENTS]) -> SolidSums {
         potential_flux_magnitude: v[10],
         potential_moment_magnitude: v[11],
         energy_flux_magnitude: v[12],
+        acceleration_flux: Vec3::new(v[13], v[14], v[15]),
+        acceleration_flux_magnitude: v[16],
+        potential_magnitude: v[17],
     }
 }
