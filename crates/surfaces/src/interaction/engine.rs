@@ -53,16 +53,19 @@ pub const NESTED_AZIMUTH_SCALE: Real = 1.3;
 /// count (Fejér's rule needs more nodes than Gauss–Legendre; tuned as the azimuth scale).
 pub const NESTED_HEIGHT_SCALE: Real = 2.4;
 
-/// The fixed and nested rules take the force in the acceleration form
-/// $\rho\oint\mathbf x\,(\mathbf a\cdot\mathrm d\mathbf S)$ instead of $-\rho\oint(\Phi - \Phi_0)\,\mathrm d\mathbf S$
-/// when $\sum|\Phi_k||\mathbf W_k|$ exceeds $\sum|\Phi_k - \Phi_0||\mathbf W_k|$ by this factor (about
-/// distance over size): then $\Phi_k - \Phi_0$ has lost about two digits to the rounding of
-/// $\Phi_k$ itself, which the rounding floor of the potential form does not see (measured:
-/// at a distance of $10^8$ sizes the potential form stalls at $10^{-8}$ relative, the
-/// acceleration form reaches $10^{-16}$; a flat spheroid, c/a = 0.0013, 89 radii from a
-/// needle: $3\times10^{-12}$ against $4\times10^{-13}$). Nearer, the potential form is kept,
-/// which leaves the founding paper's pair unchanged up to separation 30.
-pub const FORCE_FORM_SWITCH: Real = 50.0;
+/// Beyond this many bounding radii of the integrated body X between the centroids, the fixed
+/// and nested rules also sum the acceleration form of the force,
+/// $\rho\oint\mathbf x\,(\mathbf a\cdot\mathrm d\mathbf S)$, and use it instead of
+/// $-\rho\oint(\Phi - \Phi_0)\,\mathrm d\mathbf S$ when its rounding floor
+/// $\sum|\mathbf x_k||\mathbf a_k\cdot\mathbf W_k|$ is below $\sum|\Phi_k||\mathbf W_k|$, the floor
+/// the potential form really has there: $\Phi_k - \Phi_0$ keeps the absolute rounding of
+/// $\Phi_k$, about distance/size times its own size, which the potential form's floor
+/// $\sum|\Phi_k - \Phi_0||\mathbf W_k|$ does not see. Measured: at $10^8$ sizes the potential
+/// form stalls at $10^{-8}$ relative and the acceleration form reaches $10^{-16}$; a flat
+/// spheroid (c/a = 0.0013) 89 radii from a needle: $3\times10^{-12}$ against $4\times10^{-13}$.
+/// Nearer, only the potential form is summed (the extra terms cost 8 % of the loop), which
+/// leaves the founding paper's pair unchanged up to separation 30.
+pub const FAR_FIELD_RATIO: Real = 40.0;
 
 /// The relative accuracy reported for the closed forms (the potentials crate's documented
 /// accuracy of the acceleration, which dominates).
@@ -321,6 +324,8 @@ struct Placement {
     gap_ratio: Real,
     /// Whether the integration nodes must be checked against Y's region (shape unknown).
     node_check: bool,
+    /// Whether the centroids are more than [`FAR_FIELD_RATIO`] of X's bounding radii apart.
+    far: bool,
 }
 
 /// Computes interactions of [`Body`] pairs (see the [module docs](super)); holds the options
@@ -666,6 +671,7 @@ impl InteractionEngine {
             sin_elevation,
             gap_ratio,
             node_check: unknown_shape && bounding_overlap,
+            far: distance > FAR_FIELD_RATIO * x.bounding_radius(),
         })
     }
 
@@ -851,8 +857,9 @@ impl InteractionEngine {
         let axes = [e.x_semi_axis(), e.y_semi_axis(), e.z_semi_axis()];
         let mirror = !p.half_transverse;
         let density = x.density;
-        let values_of =
-            |v: &[Real; nested_rule::COMPONENTS]| solid_values(solid_sums_from(v), density, p);
+        let values_of = |v: &[Real; nested_rule::COMPONENTS]| {
+            solid_values(solid_sums_from(v, p.far), density, p)
+        };
         let start = NestedLevels {
             periodic: 2,
             across: 2,
@@ -1040,12 +1047,11 @@ fn solid_values(mut s: SolidSums, density: Real, p: &Placement) -> Values {
         s = symmetrise_solid(&s, 2);
     }
     let mut r = s.integrals(density, 0);
-    // The force's form (see FORCE_FORM_SWITCH): far from the source, Φ − Φ₀ keeps the
-    // absolute rounding of Φ, and the acceleration form ρ∮x (a·dS) is the accurate one.
+    // The force's form (see FAR_FIELD_RATIO): summed only far away, where Φ − Φ₀ keeps the
+    // absolute rounding of Φ.
     let potential_floor = s.potential_magnitude;
     let acceleration_floor = s.acceleration_flux_magnitude;
-    let acceleration_form = potential_floor > FORCE_FORM_SWITCH * s.potential_flux_magnitude
-        && acceleration_floor < potential_floor;
+    let acceleration_form = acceleration_floor > 0.0 && acceleration_floor < potential_floor;
     let force_size = if acceleration_form {
         r.force = density * s.acceleration_flux;
         acceleration_floor
@@ -1086,12 +1092,20 @@ fn evaluate_table(
     match table {
         NodeTable::Solid(t) => {
             if force_only {
-                let sums = with_field!(&y.field, |f| solid_force_sums(t, f, &p.map));
+                let sums = if p.far {
+                    with_field!(&y.field, |f| solid_force_sums::<_, true>(t, f, &p.map))
+                } else {
+                    with_field!(&y.field, |f| solid_force_sums::<_, false>(t, f, &p.map))
+                };
                 let mut values = solid_values(sums, x.density, p);
                 values.force_only = true;
                 return values;
             }
-            let s = with_field!(&y.field, |f| solid_table_sums(t, f, &p.map));
+            let s = if p.far {
+                with_field!(&y.field, |f| solid_table_sums::<_, true>(t, f, &p.map))
+            } else {
+                with_field!(&y.field, |f| solid_table_sums::<_, false>(t, f, &p.map))
+            };
             solid_values(s, x.density, p)
         }
         NodeTable::Lamina(t) => {

@@ -300,7 +300,7 @@ impl std::ops::Deref for SolidTable {
 /// [`solid_sums`] over a [`SolidTable`], with the per-node constants read instead of
 /// recomputed (the same sums, term by term).
 #[inline(never)]
-pub(crate) fn solid_table_sums<P: Potential + ?Sized>(
+pub(crate) fn solid_table_sums<P: Potential + ?Sized, const FAR: bool>(
     table: &SolidTable,
     source: &P,
     map: &FrameMap,
@@ -331,9 +331,11 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized>(
             let a = map.back(&field.acceleration);
             let a_dot_w = a.dot(w);
             let (e_potential, e_gradient) = (phi * k.x_dot_w, k.half_x2 * a_dot_w);
-            af += k.x * a_dot_w;
-            acceleration_size += k.x_norm * a_dot_w.abs();
-            potential_size += phi.abs() * k.w_norm;
+            if FAR {
+                af += k.x * a_dot_w;
+                acceleration_size += k.x_norm * a_dot_w.abs();
+                potential_size += phi.abs() * k.w_norm;
+            }
             let relative = phi - reference;
             f += w * relative;
             m += k.moment * relative;
@@ -363,9 +365,11 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized>(
     }
 }
 
-/// The force parts of [`solid_table_sums`] alone (both forms and their sizes).
+/// The force parts of [`solid_table_sums`] alone: the potential form and, with `FAR`, the
+/// acceleration form (the field's acceleration is then needed; otherwise only the potential
+/// is evaluated).
 #[inline(never)]
-pub(crate) fn solid_force_sums<P: Potential + ?Sized>(
+pub(crate) fn solid_force_sums<P: Potential + ?Sized, const FAR: bool>(
     table: &SolidTable,
     source: &P,
     map: &FrameMap,
@@ -384,15 +388,19 @@ pub(crate) fn solid_force_sums<P: Potential + ?Sized>(
         let mut f = Vec3::zeros();
         let mut af = Vec3::zeros();
         for ((r, w), k) in block_points.iter().zip(block_weights).zip(block_constants) {
-            let field = source.field(&map.apply(r));
-            let phi = field.potential;
-            let a_dot_w = map.back(&field.acceleration).dot(w);
+            let phi = if FAR {
+                let field = source.field(&map.apply(r));
+                let a_dot_w = map.back(&field.acceleration).dot(w);
+                af += k.x * a_dot_w;
+                acceleration_size += k.x_norm * a_dot_w.abs();
+                potential_size += field.potential.abs() * k.w_norm;
+                field.potential
+            } else {
+                source.potential(&map.apply(r))
+            };
             let relative = phi - reference;
             f += w * relative;
-            af += k.x * a_dot_w;
             size += relative.abs() * k.w_norm;
-            acceleration_size += k.x_norm * a_dot_w.abs();
-            potential_size += phi.abs() * k.w_norm;
         }
         flux.add(&f);
         acceleration_flux.add(&af);

@@ -219,8 +219,10 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized>(
     }
 }
 
-/// The raw sums of a nested value (see [`COMPONENTS`]).
-pub(crate) fn solid_sums_from(v: &[Real; COMPONENTS]) -> SolidSums {
+/// The raw sums of a nested value (see [`COMPONENTS`]); the acceleration form of the force only
+/// when `far` (as the fixed rules' loops).
+pub(crate) fn solid_sums_from(v: &[Real; COMPONENTS], far: bool) -> SolidSums {
+    let far = if far { 1.0 } else { 0.0 };
     SolidSums {
         potential_flux: Vec3::new(v[0], v[1], v[2]),
         potential_moment: Vec3::new(v[3], v[4], v[5]),
@@ -229,8 +231,8 @@ pub(crate) fn solid_sums_from(v: &[Real; COMPONENTS]) -> SolidSums {
         potential_flux_magnitude: v[10],
         potential_moment_magnitude: v[11],
         energy_flux_magnitude: v[12],
-        acceleration_flux: Vec3::new(v[13], v[14], v[15]),
-        acceleration_flux_magnitude: v[16],
-        potential_magnitude: v[17],
+        acceleration_flux: Vec3::new(v[13], v[14], v[15]) * far,
+        acceleration_flux_magnitude: v[16] * far,
+        potential_magnitude: v[17] * far,
     }
 }
