@@ -40,11 +40,13 @@
 //! # Performance (paper-2s: RK4, dt = 0.1, t = 300, 12 001 force evaluations; release build,
 //! one core, example `paper_2s`)
 //!
-//! Direct path at engine tolerance $10^{-12}$: 148–156 ms (12.4–12.9 µs per evaluation, nearly
-//! all of it the engine). Fast path: 6.7–7.6 ms in all, of which start-up 5.6–6 ms (196 engine
-//! calls at $10^{-10}$ to bound the range, 205 at $10^{-13}$ for a 3-piece table) and 0.1 µs per
-//! force. Both give $\psi_p = 18.963831°$, $T_r = 47.354929$; their orbits differ by
-//! $1.2\times10^{-11}$ in separation.
+//! Direct path at engine tolerance $10^{-12}$: 148–169 ms (12.4–14 µs per evaluation, nearly
+//! all of it the engine). Fast path: 4.6 ms in all, of which start-up 2.0 ms: one engine call
+//! to check the start (its $V$ and $V'$ reused), 5 calls at $10^{-10}$ for the range (0.11 ms;
+//! safeguarded Newton, see [`reachable_separations`]; formerly 196 calls, 2.6 ms), 98 calls at
+//! $10^{-13}$ for a one-piece table (1.8 ms), then 0.2 µs per force. Both give
+//! $\psi_p = 18.963831°$, $T_r = 47.354929$; their orbits differ by $1.2\times10^{-11}$ in
+//! separation.
 
 use crate::interpolant::{reachable_separations, InterpolantError, InterpolatedCentralPair};
 use crate::model::{InteractionError, InteractionModel};
@@ -52,6 +54,7 @@ use crate::state::TwoBodyState;
 use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
+use std::time::{Duration, Instant};
 use surfgrav_potentials::{Pose, Real, Vec3};
 use surfgrav_surfaces::interaction::{
     Body, BodyShape, Interaction, InteractionEngine, InteractionError as EngineError,
@@ -69,6 +72,11 @@ const TABLE_ENGINE_TOLERANCES: [Real; 4] = [1e-13, 2e-13, 5e-13, 1e-12];
 /// Engine tolerance of the energies used only to find the reachable range (the range is then
 /// widened by [`SceneSettings::range_margin`], far more than this error moves the turning points).
 const RANGE_ENGINE_TOLERANCE: Real = 1e-10;
+
+/// Relative tolerance in separation of the turning points: $10^6$ times below the default
+/// margin of 1 %, and about 50 times above the error that the range engine's $10^{-10}$ in $V$
+/// puts on them on paper-2s ($\delta r \approx \delta V/|g'| \approx 2\times10^{-10}$).
+const RANGE_SEPARATION_TOLERANCE: Real = 1e-8;
 
 /// Issue 4's requirement on the table: $10^{-13}$ relative against the direct energy.
 const ISSUE_TABLE_TOLERANCE: Real = 1e-13;
@@ -429,6 +437,13 @@ pub struct TableReport {
     pub pieces: usize,
     /// Relative tolerance the table was verified to against the direct energies.
     pub table_tolerance: Real,
+    /// Wall time spent finding the range.
+    pub range_time: Duration,
+    /// Wall time spent tabulating and verifying.
+    pub table_time: Duration,
+    /// Wall time of the whole build from the first engine call (the start check, the range, the
+    /// table).
+    pub startup_time: Duration,
 }
 
 /// The model a scene runs with: the direct engine, or the tabulated central pair.
@@ -462,8 +477,10 @@ impl SceneModel {
         settings.validate()?;
         let direct = EngineModel::new(body_a, body_b, settings.engine)?;
         let (pose_a, pose_b) = (initial.body_a.pose(), initial.body_b.pose());
-        // Fails early, with the engine's own message, on overlap or bad poses.
-        direct.interaction(&pose_a, &pose_b)?;
+        let started = Instant::now();
+        // Fails early, with the engine's own message, on overlap or bad poses; its energy and
+        // slope at the start are reused by the range search.
+        let at_start = direct.interaction(&pose_a, &pose_b)?;
         let r0 = initial.relative_position();
         if !settings.interpolate
             || !direct.is_central(&pose_a, &pose_b, &initial.relative_velocity())
@@ -498,12 +515,22 @@ impl SceneModel {
                 ..settings.engine
             },
         )?;
+        let start_separation = r0.norm();
+        let start_value = (
+            at_start.potential_energy,
+            at_start.force_on_a.dot(&direction),
+        );
+        let range_started = Instant::now();
         let reachable = reachable_separations(
             &mut |r| {
+                if r == start_separation {
+                    return Ok(start_value);
+                }
                 let (pa, pb) = placed(r);
+                // F_A = V'(r) r̂ with r̂ = `direction` for these poses.
                 range_model
                     .interaction(&pa, &pb)
-                    .map(|i| i.potential_energy)
+                    .map(|i| (i.potential_energy, i.force_on_a.dot(&direction)))
                     .map_err(|e| range_model.map_error(e, &pa, &pb))
             },
             mass_a,
@@ -512,8 +539,11 @@ impl SceneModel {
             &initial.relative_velocity(),
             lower_limit,
             upper_limit,
+            RANGE_SEPARATION_TOLERANCE,
         )
         .map_err(EngineModelError::Range)?;
+        let range_time = range_started.elapsed();
+        let table_started = Instant::now();
         // Down to contact itself when the margin reaches it: the Chebyshev nodes and check
         // points are interior, so the engine is never asked for touching bodies, and the
         // integrator's contact bisection never falls between contact and the table.
@@ -592,6 +622,7 @@ impl SceneModel {
                 .with_contact_distance(d)
                 .ok_or(EngineModelError::Range(InteractionError::Coincident))?;
         }
+        let table_time = table_started.elapsed();
         let report = TableReport {
             reachable,
             tabulated: (low, high),
@@ -600,6 +631,9 @@ impl SceneModel {
             table_engine_calls: table_calls,
             pieces: table.piece_count(),
             table_tolerance: table.tolerance(),
+            range_time,
+            table_time,
+            startup_time: started.elapsed(),
         };
         Ok(Self::Interpolated { table, report })
     }

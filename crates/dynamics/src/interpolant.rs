@@ -330,25 +330,44 @@ impl InteractionModel for InterpolatedCentralPair {
 /// (energy and angular momentum conservation), clipped to [`lower_limit`, `upper_limit`]
 /// (themselves clipped to the positive finite numbers). Coincident centroids are an error.
 ///
-/// The turning points are found by stepping geometrically (factor 1.01) away from $r_0$ until the
-/// effective energy exceeds $E$, then bisecting to round-off. The caller adds a safety margin
-/// before tabulating (the integrator's own energy error moves the turning points slightly).
+/// `energy` returns $V(r)$ and its slope $V'(r)$ (one call of the surface-integral engine gives
+/// both: $\mathbf F_A = V'(r)\,\hat{\mathbf r}$).
+///
+/// # Method
+///
+/// Each turning point is a root of the excess $g(r) = V(r) + L^2/(2\mu r^2) - E$, with
+/// $g'(r) = V'(r) - L^2/(\mu r^3)$ and, exactly, $g(r_0) = -\tfrac12\mu\dot r_0^2$ (radial
+/// velocity $\dot r_0$). When $\dot r_0 = 0$ and $g'(r_0)$ points outward on a side, $r_0$ itself
+/// is that side's turning point (no evaluation). Otherwise the first trial point is the turning
+/// point of the Kepler fit $V \approx c - k/r$ matching $V(r_0)$ and $V'(r_0)$ (a quadratic in
+/// $1/r$); while no point with $g > 0$ is known, Newton steps that move outward (at most
+/// quadrupling the distance from $r_0$) or that quadrupling extend the search; once the root is
+/// bracketed, Newton steps inside the bracket, bisection otherwise (a safeguarded Newton
+/// iteration: quadratic convergence, never leaves the bracket). The search stops when the Newton
+/// correction or the bracket is below `relative_tolerance` times $r$ (floored at $4\epsilon$) and
+/// returns the corrected root. The caller adds a safety margin before tabulating (the
+/// integrator's own energy error moves the turning points slightly).
+///
+/// Cost on paper-2s (engine at $10^{-10}$): 4 evaluations for the pericentre at tolerance
+/// $10^{-8}$, none for the apocentre (the start), against 196 for the former geometric search
+/// plus bisection to round-off.
 #[allow(clippy::too_many_arguments)]
 pub fn reachable_separations(
-    energy: &mut dyn FnMut(Real) -> Result<Real, InteractionError>,
+    energy: &mut dyn FnMut(Real) -> Result<(Real, Real), InteractionError>,
     mass_a: Real,
     mass_b: Real,
     relative_position: &Vec3,
     relative_velocity: &Vec3,
     lower_limit: Real,
     upper_limit: Real,
+    relative_tolerance: Real,
 ) -> Result<(Real, Real), InteractionError> {
     let mu = mass_a * mass_b / (mass_a + mass_b);
     let r0 = relative_position.norm();
     if !(r0.is_finite() && r0 > 0.0) {
         return Err(InteractionError::Coincident);
     }
-    // Limits outside (0, ∞) are clipped so the geometric search always ends.
+    // Limits outside (0, ∞) are clipped so the search always ends.
     let lower_limit = if lower_limit.is_nan() {
         Real::MIN_POSITIVE
     } else {
@@ -359,54 +378,159 @@ pub fn reachable_separations(
     } else {
         upper_limit.min(Real::MAX)
     };
+    let tolerance = if relative_tolerance.is_nan() {
+        0.0
+    } else {
+        relative_tolerance.max(4.0 * Real::EPSILON)
+    };
     let l = mu * relative_position.cross(relative_velocity).norm();
-    let total = 0.5 * mu * relative_velocity.norm_squared() + energy(r0)?;
-    let mut excess = |r: Real| -> Result<Real, InteractionError> {
-        Ok(energy(r)? + l * l / (2.0 * mu * r * r) - total)
+    let centrifugal = l * l / (2.0 * mu);
+    let radial_velocity = relative_position.dot(relative_velocity) / r0;
+    let (v0, dv0) = energy(r0)?;
+    let total = 0.5 * mu * relative_velocity.norm_squared() + v0;
+    let start = Sample {
+        r: r0,
+        excess: -0.5 * mu * radial_velocity * radial_velocity,
+        slope: dv0 - 2.0 * centrifugal / (r0 * r0 * r0),
     };
-    let mut turning = |factor: Real, limit: Real| -> Result<Real, InteractionError> {
-        let mut inside = r0;
-        loop {
-            let next = inside * factor;
-            let beyond = if factor > 1.0 {
-                next >= limit
-            } else {
-                next <= limit
-            };
-            if beyond {
-                return if excess(limit)? <= 0.0 {
-                    Ok(limit)
-                } else {
-                    bisect(&mut excess, inside, limit)
-                };
-            }
-            if excess(next)? > 0.0 {
-                return bisect(&mut excess, inside, next);
-            }
-            inside = next;
+    let mut excess = |r: Real| -> Result<Sample, InteractionError> {
+        let (v, dv) = energy(r)?;
+        Ok(Sample {
+            r,
+            excess: v + centrifugal / (r * r) - total,
+            slope: dv - 2.0 * centrifugal / (r * r * r),
+        })
+    };
+    // Kepler fit V ≈ c − k/r through V(r0), V'(r0): c − E − k u + (L²/2μ) u² = 0, u = 1/r.
+    let (k, c) = (dv0 * r0 * r0, v0 + dv0 * r0);
+    let (a, b, cc) = (centrifugal, -k, c - total);
+    let discriminant = b * b - 4.0 * a * cc;
+    let (mut low_guess, mut high_guess) = (None, None);
+    if k > 0.0 && discriminant >= 0.0 {
+        let root = discriminant.sqrt();
+        // u₋ = 2cc/(k + √D) (stable), u₊ = (k + √D)/(2a).
+        let u_minus = 2.0 * cc / (k + root);
+        high_guess = Some(if u_minus > 0.0 {
+            1.0 / u_minus
+        } else {
+            upper_limit
+        });
+        if a > 0.0 {
+            low_guess = Some(2.0 * a / (k + root));
         }
-    };
-    let low = turning(1.0 / 1.01, lower_limit.min(r0))?;
-    let high = turning(1.01, upper_limit.max(r0))?;
+    }
+    let low = turning_point(
+        &mut excess,
+        &start,
+        -1.0,
+        lower_limit.min(r0),
+        low_guess,
+        tolerance,
+    )?;
+    let high = turning_point(
+        &mut excess,
+        &start,
+        1.0,
+        upper_limit.max(r0),
+        high_guess,
+        tolerance,
+    )?;
     Ok((low, high))
 }
 
-/// Bisection between `inside` (excess ≤ 0) and `outside` (excess > 0); returns the inside end.
-fn bisect(
-    excess: &mut dyn FnMut(Real) -> Result<Real, InteractionError>,
-    mut inside: Real,
-    mut outside: Real,
+/// The excess energy $g$ and its slope $g'$ at a separation.
+#[derive(Debug, Clone, Copy)]
+struct Sample {
+    r: Real,
+    excess: Real,
+    slope: Real,
+}
+
+/// The turning point on `side` (+1 outward, −1 inward) of `start`, not beyond `limit`, by the
+/// safeguarded Newton iteration of [`reachable_separations`].
+fn turning_point(
+    excess: &mut dyn FnMut(Real) -> Result<Sample, InteractionError>,
+    start: &Sample,
+    side: Real,
+    limit: Real,
+    guess: Option<Real>,
+    tolerance: Real,
 ) -> Result<Real, InteractionError> {
-    for _ in 0..200 {
-        let mid = 0.5 * (inside + outside);
-        if mid == inside || mid == outside {
-            break;
-        }
-        if excess(mid)? > 0.0 {
-            outside = mid;
-        } else {
-            inside = mid;
-        }
+    let r0 = start.r;
+    if limit == r0 {
+        return Ok(r0);
     }
-    Ok(inside)
+    if start.excess >= 0.0 && side * start.slope > 0.0 {
+        // At rest radially with the effective force pointing back: r0 is this turning point.
+        return Ok(r0);
+    }
+    // Beyond `x` on this side (strictly).
+    let beyond = |x: Real, y: Real| side * (y - x) > 0.0;
+    let clip = |x: Real| if beyond(limit, x) { limit } else { x };
+    let newton = |s: &Sample| s.r - s.excess / s.slope;
+    let mut inside = *start;
+    let mut outside: Option<Sample> = None;
+    let mut x = match guess {
+        Some(g) if g.is_finite() && beyond(r0, g) => clip(g),
+        _ => {
+            let n = newton(start);
+            if n.is_finite() && beyond(r0, n) && start.excess < 0.0 {
+                clip(n)
+            } else {
+                clip(r0 * (1.0 + 0.01 * side))
+            }
+        }
+    };
+    for _ in 0..400 {
+        let sample = excess(x)?;
+        if sample.excess > 0.0 {
+            outside = Some(sample);
+        } else {
+            inside = sample;
+            if x == limit {
+                return Ok(limit);
+            }
+        }
+        let step = newton(&sample);
+        if step.is_finite() && (step - x).abs() <= tolerance * x {
+            // Converged: the corrected root, never inside the last inside point.
+            let root = if beyond(inside.r, step) {
+                step
+            } else {
+                inside.r
+            };
+            return Ok(match outside {
+                Some(out) if beyond(out.r, root) => out.r,
+                _ => root,
+            });
+        }
+        x = match outside {
+            None => {
+                let far = clip(r0 + 4.0 * (inside.r - r0));
+                if step.is_finite() && beyond(inside.r, step) && !beyond(far, step) {
+                    step
+                } else {
+                    far
+                }
+            }
+            Some(out) => {
+                let (lo, hi) = (inside.r.min(out.r), inside.r.max(out.r));
+                if hi - lo <= tolerance * lo {
+                    return Ok(out.r);
+                }
+                let within = |y: Real| y.is_finite() && y > lo && y < hi;
+                // Newton from the newest point, then from the other end (one of them lies on
+                // the side where the iteration converges monotonically), then the secant,
+                // then bisection.
+                let other = if sample.r == out.r { &inside } else { &out };
+                let secant =
+                    inside.r - inside.excess * (out.r - inside.r) / (out.excess - inside.excess);
+                [step, newton(other), secant]
+                    .into_iter()
+                    .find(|&y| within(y))
+                    .unwrap_or(0.5 * (lo + hi))
+            }
+        };
+    }
+    Ok(outside.map_or(inside.r, |out| out.r))
 }
