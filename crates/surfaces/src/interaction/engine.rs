@@ -876,7 +876,15 @@ impl InteractionEngine {
                 tolerance,
                 budget,
                 |k, range, out| {
-                    ellipsoid_line(&set, axes, k, range, mirror, f, &p.map, reference, out)
+                    if p.far {
+                        ellipsoid_line::<_, true>(
+                            &set, axes, k, range, mirror, f, &p.map, reference, out,
+                        )
+                    } else {
+                        ellipsoid_line::<_, false>(
+                            &set, axes, k, range, mirror, f, &p.map, reference, out,
+                        )
+                    }
                 },
                 |value, coarse| {
                     // Each level's values are asked for twice or more: convert each once.

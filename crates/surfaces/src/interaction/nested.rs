@@ -142,12 +142,13 @@ pub(crate) fn rule_set(
 pub(crate) const COMPONENTS: usize = 18;
 
 /// Adds to `out` the sum over azimuth nodes `range` of height node `k` (and, with `mirror`,
-/// of its mirror image $-z$) of the integrand times the azimuth factor, for an ellipsoid of
+/// of its mirror image $-z$) of the integrand times the azimuth factor (the acceleration form
+/// of the force only with `FAR`), for an ellipsoid of
 /// semi-axes `axes` in the field of `source` (`reference` its potential at the centroid).
 /// Returns the evaluations spent.
 #[allow(clippy::too_many_arguments)]
 #[inline]
-pub(crate) fn ellipsoid_line<P: Potential + ?Sized>(
+pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
     set: &NestedRuleSet,
     axes: [Real; 3],
     k: usize,
@@ -195,11 +196,13 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized>(
         acc[10] += relative.abs() * w_norm;
         acc[11] += relative.abs() * x_cross_w.norm();
         acc[12] += e_potential.abs() + e_gradient.abs();
-        acc[13] += r.x * a_dot_w;
-        acc[14] += r.y * a_dot_w;
-        acc[15] += r.z * a_dot_w;
-        acc[16] += r.norm() * a_dot_w.abs();
-        acc[17] += phi.abs() * w_norm;
+        if FAR {
+            acc[13] += r.x * a_dot_w;
+            acc[14] += r.y * a_dot_w;
+            acc[15] += r.z * a_dot_w;
+            acc[16] += r.norm() * a_dot_w.abs();
+            acc[17] += phi.abs() * w_norm;
+        }
     };
     for ((&f, &cp), &sp) in factors.iter().zip(cos).zip(sin) {
         let (rx, ry) = (a_s * cp, b_s * sp);
