@@ -41,11 +41,13 @@
 //! one core, example `paper_2s`)
 //!
 //! Direct path at engine tolerance $10^{-12}$: 148–169 ms (12.4–14 µs per evaluation, nearly
-//! all of it the engine). Fast path: 4.6 ms in all, of which start-up 2.0 ms: one engine call
+//! all of it the engine). Fast path: 2.9 ms in all, of which start-up 1.7 ms: one engine call
 //! to check the start (its $V$ and $V'$ reused), 5 calls at $10^{-10}$ for the range (0.11 ms;
-//! safeguarded Newton, see [`reachable_separations`]; formerly 196 calls, 2.6 ms), 98 calls at
-//! $10^{-13}$ for a one-piece table (1.8 ms), then 0.2 µs per force. Both give
-//! $\psi_p = 18.963831°$, $T_r = 47.354929$; their orbits differ by $1.2\times10^{-11}$ in
+//! safeguarded Newton, see [`reachable_separations`]; formerly 196 calls, 2.4–2.6 ms), 82 calls
+//! at $10^{-13}$ for a one-piece table of degree 32 (1.55 ms; formerly 98: the failed degree
+//! 16 is now passed over on its coefficients without its 16 checks), then 0.1 µs per force
+//! (formerly 0.16–0.2 µs; the series is summed as two half-length chains). Both give
+//! $\psi_p = 18.963831°$, $T_r = 47.354929$; their orbits differ by $1.9\times10^{-11}$ in
 //! separation.
 
 use crate::interpolant::{reachable_separations, InterpolantError, InterpolatedCentralPair};
