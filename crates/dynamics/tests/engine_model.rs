@@ -376,3 +376,30 @@ fn engine_failure_is_reported_with_its_reason() {
         other => panic!("expected an engine error, got {other:?}"),
     }
 }
+
+/// Integrator stages take the force alone (the engine's force-only path); it must be the very
+/// force of the full evaluation, at near contact and in a tilted, off-plane pose alike.
+#[test]
+fn stage_force_is_the_full_evaluations_force() {
+    let model = EngineModel::new(spheroid(), spheroid(), InteractionOptions::default()).unwrap();
+    let cases = [
+        (
+            Pose::identity(),
+            Pose::new(Vec3::new(2.1, 0.0, 0.0), Vec3::zeros()),
+        ),
+        (
+            Pose::identity(),
+            Pose::new(Vec3::new(3.0, 0.4, 0.2), Vec3::zeros()),
+        ),
+        (
+            Pose::identity(),
+            Pose::new(Vec3::new(-0.5, 2.6, 0.7), Vec3::new(0.3, -0.2, 0.1)),
+        ),
+    ];
+    for (pose_a, pose_b) in cases {
+        let full = model.interaction(&pose_a, &pose_b).unwrap();
+        let stage = model.force_on_a(&pose_a, &pose_b).unwrap();
+        assert_eq!(stage, full.force_on_a, "pose_b = {:?}", pose_b.position);
+    }
+    assert_eq!(model.engine_calls(), 6);
+}
