@@ -54,8 +54,8 @@ pub use adaptive::{
 pub use error::QuadratureError;
 pub use gauss_legendre::{GaussLegendre, MAX_GAUSS_LEGENDRE_ORDER};
 pub use nested::{
-    rate_estimate, NestedCubature, NestedEstimate, NestedFejer, NestedLevels, NestedTensorRule,
-    NestedTrapezoid,
+    geometric_estimate, rate_estimate, NestedCubature, NestedEstimate, NestedFejer, NestedLevels,
+    NestedTensorRule, NestedTrapezoid,
 };
 pub use periodic_trapezoid::PeriodicTrapezoid;
 pub use rule::{Interval, Rule1D};

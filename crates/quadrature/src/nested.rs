@@ -380,6 +380,33 @@ pub fn rate_estimate(coarser_change: f64, change: f64) -> f64 {
     }
 }
 
+/// The error estimate of the finest of three nested levels when the convergence is known to be
+/// geometric in the node count (an integrand analytic in a wide strip or Bernstein ellipse,
+/// such as a far body's field): with $e_\ell \approx C\rho^{-n_\ell}$ and $n_\ell$ doubling,
+/// $\delta_1 \approx e_{\ell-2}$, $\delta_2 \approx e_{\ell-1}$ and
+/// $e_\ell \approx \delta_2\,(\delta_2/\delta_1)^2$; returned (edge cases as
+/// [`rate_estimate`]) is
+/// $$ e = \delta_2\,(\delta_2/\delta_1)^{p}, $$
+/// with the caller's exponent $1 \le p \le 2$: $p = 1$ is [`rate_estimate`]; $p < 2$ keeps a
+/// margin for a prefactor $C$ that grows with the level. Only as honest as the assumption: a
+/// caller must show, by tests over its integrands, that the true error stays below it.
+pub fn geometric_estimate(coarser_change: f64, change: f64, exponent: f64) -> f64 {
+    if change == 0.0 {
+        0.0
+    } else if coarser_change > 0.0 {
+        let ratio = change / coarser_change;
+        // A change that does not shrink: no faster than the matched estimate.
+        let p = if ratio < 1.0 {
+            exponent.clamp(1.0, 2.0)
+        } else {
+            1.0
+        };
+        change * ratio.powf(p)
+    } else {
+        f64::INFINITY
+    }
+}
+
 /// The doubling cubature's workspace (raw line sums at three periodic levels), reused across
 /// calls: after the first calls at a given size it allocates nothing.
 #[derive(Debug, Clone, Default)]
@@ -462,12 +489,45 @@ impl<const N: usize> NestedCubature<N> {
         start: NestedLevels,
         tolerance: f64,
         max_evaluations: usize,
-        mut line: L,
-        mut norm: E,
+        line: L,
+        norm: E,
     ) -> Result<NestedEstimate<N>, QuadratureError>
     where
         L: FnMut(usize, Range<usize>, &mut [f64; N]) -> usize,
         E: FnMut(&[f64; N], &[f64; N]) -> f64,
+    {
+        self.integrate_with(
+            rule,
+            start,
+            tolerance,
+            max_evaluations,
+            line,
+            norm,
+            rate_estimate,
+        )
+    }
+
+    /// As [`Self::integrate`], with the error estimate of a direction from its last two
+    /// changes given by `estimate(δ₁, δ₂)` instead of [`rate_estimate`] (for example
+    /// [`geometric_estimate`] where the integrand is known to converge geometrically).
+    ///
+    /// # Errors
+    /// As [`Self::integrate`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn integrate_with<L, E, R>(
+        &mut self,
+        rule: &NestedTensorRule,
+        start: NestedLevels,
+        tolerance: f64,
+        max_evaluations: usize,
+        mut line: L,
+        mut norm: E,
+        estimate_of: R,
+    ) -> Result<NestedEstimate<N>, QuadratureError>
+    where
+        L: FnMut(usize, Range<usize>, &mut [f64; N]) -> usize,
+        E: FnMut(&[f64; N], &[f64; N]) -> f64,
+        R: Fn(f64, f64) -> f64,
     {
         let (p, a) = (&rule.periodic, &rule.across);
         for (base, levels) in [(p.base(), p.levels()), (a.base(), a.levels())] {
@@ -495,8 +555,8 @@ impl<const N: usize> NestedCubature<N> {
             let periodic_2 = weighted(&self.lines[2], a.weights(j), p.step(i - 2));
             let across_1 = weighted(fine, a.weights(j - 1), p.step(i));
             let across_2 = weighted(fine, a.weights(j - 2), p.step(i));
-            let ep = rate_estimate(norm(&periodic_1, &periodic_2), norm(&value, &periodic_1));
-            let ea = rate_estimate(norm(&across_1, &across_2), norm(&value, &across_1));
+            let ep = estimate_of(norm(&periodic_1, &periodic_2), norm(&value, &periodic_1));
+            let ea = estimate_of(norm(&across_1, &across_2), norm(&value, &across_1));
             let estimate = ep.max(ea);
             let result = |converged| NestedEstimate {
                 value,

@@ -1,9 +1,10 @@
 //! Nested rules: exactness, nesting, and the doubling cubature's estimate against true errors.
 
 use std::f64::consts::{PI, TAU};
+use std::ops::Range;
 use surfgrav_quadrature::{
-    rate_estimate, Interval, NestedCubature, NestedFejer, NestedLevels, NestedTensorRule,
-    NestedTrapezoid, QuadratureError,
+    geometric_estimate, rate_estimate, Interval, NestedCubature, NestedFejer, NestedLevels,
+    NestedTensorRule, NestedTrapezoid, QuadratureError,
 };
 
 /// Fejér's second rule with n subdivisions integrates x^k exactly for k ≤ n − 2 (n − 1 for
@@ -95,6 +96,73 @@ fn bad_nested_rules_are_errors() {
     assert_eq!(rate_estimate(1e-3, 1e-6), 1e-9);
     assert_eq!(rate_estimate(0.0, 0.0), 0.0);
     assert_eq!(rate_estimate(0.0, 1e-9), f64::INFINITY);
+    assert!((geometric_estimate(1e-2, 1e-6, 2.0) / 1e-14 - 1.0).abs() < 1e-12);
+    assert_eq!(
+        geometric_estimate(1e-3, 1e-6, 1.0),
+        rate_estimate(1e-3, 1e-6)
+    );
+    assert!((geometric_estimate(1e-2, 1e-6, 1.5) / 1e-12 - 1.0).abs() < 1e-12);
+    // A change that grows is not extrapolated below the matched estimate.
+    assert_eq!(
+        geometric_estimate(1e-6, 1e-3, 2.0),
+        rate_estimate(1e-6, 1e-3)
+    );
+    assert_eq!(geometric_estimate(0.0, 0.0, 1.5), 0.0);
+    assert_eq!(geometric_estimate(0.0, 1e-9, 1.5), f64::INFINITY);
+}
+
+/// The far-field case of the geometric estimate: the integrand of
+/// [`cubature_estimate_bounds_the_true_error`] with ε ≥ 7 (analytic in a strip of half-width
+/// acosh(1 + ε) ≥ 2 in φ, geometric convergence from the coarsest levels), integrated from
+/// the coarsest start (base 2 in both directions) with [`geometric_estimate`] at exponent
+/// 1.5, as the interaction engine does far away: the estimate bounds the true error (or the
+/// error is at rounding, 10⁻¹⁵) and the tolerance is met, with fewer evaluations than the
+/// matched estimate δ₂²/δ₁ needs.
+#[test]
+fn geometric_estimate_bounds_the_true_error_far_away() {
+    let mut worst: f64 = 0.0;
+    for eps in [7.0f64, 10.0, 29.0, 1e3, 1e6] {
+        let exact = TAU * (1.0 / (1.0 + eps)).asin();
+        for tolerance in [1e-4, 1e-6, 1e-8, 1e-10, 1e-12] {
+            let rule = NestedTensorRule {
+                periodic: NestedTrapezoid::new(2, 10, 0.0, TAU, false).unwrap(),
+                across: NestedFejer::new(2, 8, Interval::new(0.0, 1.0).unwrap()).unwrap(),
+            };
+            let start = NestedLevels {
+                periodic: 2,
+                across: 2,
+            };
+            let line = |k: usize, range: Range<usize>, out: &mut [f64; 1]| {
+                let x = rule.across.nodes()[k];
+                for m in range.clone() {
+                    let phi = rule.periodic.nodes()[m];
+                    out[0] += rule.periodic.factors()[m] / (1.0 + eps - x * phi.cos());
+                }
+                range.len()
+            };
+            let norm = |a: &[f64; 1], b: &[f64; 1]| (a[0] - b[0]).abs() / a[0].abs();
+            let mut cubature = NestedCubature::<1>::new();
+            let r = cubature
+                .integrate_with(&rule, start, tolerance, 1_000_000, line, norm, |d1, d2| {
+                    geometric_estimate(d1, d2, 1.5)
+                })
+                .unwrap();
+            let matched = NestedCubature::<1>::new()
+                .integrate(&rule, start, tolerance, 1_000_000, line, norm)
+                .unwrap();
+            assert!(r.converged, "eps {eps} tol {tolerance}");
+            assert!(r.evaluations <= matched.evaluations);
+            let err = (r.value[0] - exact).abs() / exact;
+            assert!(r.error_estimate <= tolerance);
+            assert!(
+                err <= r.error_estimate.max(1e-15),
+                "eps {eps} tol {tolerance}: error {err:e} > estimate {:e}",
+                r.error_estimate
+            );
+            worst = worst.max(err / r.error_estimate.max(1e-15));
+        }
+    }
+    println!("worst true error / estimate: {worst:.3}");
 }
 
 /// ∫₀^{2π}∫₀^1 1/(1 + ε − x cos φ) dx dφ = 2π ∫₀^1 dx / √((1+ε)² − x²) = 2π asin(1/(1+ε)):

@@ -220,6 +220,99 @@ fn nested_estimates_bound_the_true_error() {
     println!("worst true error / estimate, nested: {worst_ratio:.3}");
 }
 
+/// The nested rule far away (gap ratio from 8 on: coarser start and the geometric estimate
+/// δ₂(δ₂/δ₁)^1.5, see `NESTED_GEOMETRIC_GAP`): spheroids c/a 0.01 … 100 (B the paper's
+/// spheroid or A's twin), separations 10 to 10⁸ sizes, B in the equatorial plane, at 53° and
+/// on the axis, and a generic pose. At 10⁻⁶ and 10⁻⁹ the estimate bounds the true error (plus
+/// the reference's estimate). At 10⁻¹² both the result and the 10⁻¹⁴ ladder reference sit at
+/// their rounding floors: there the tolerance is asserted (measured: up to 2.6·10⁻¹³ against
+/// rounding estimates near 10⁻¹⁵ for the flattest and longest bodies, as with the matched
+/// estimate δ₂²/δ₁ before the change, 3.3·10⁻¹³).
+#[test]
+fn nested_far_field_estimates_bound_the_true_error() {
+    let mut worst_ratio: f64 = 0.0;
+    let mut cases = 0;
+    for ratio in [0.01, 0.25, 1.0, 100.0] {
+        for rb in [0.25, ratio] {
+            let a = Body::spheroid(Spheroid::new(1.0, ratio, 1.0).unwrap()).unwrap();
+            let b = Body::spheroid(Spheroid::new(1.0, rb, 2.0).unwrap()).unwrap();
+            let size = f64::max(ratio, 1.0).max(rb.max(1.0));
+            for separation in [10.0, 30.0, 1e3, 1e8] {
+                let d = separation * size;
+                for (direction, rotation) in [
+                    ([1.0f64, 0.0, 0.0], [0.0; 3]),
+                    ([0.6, 0.0, 0.8], [0.0; 3]),
+                    ([0.0, 0.0, 1.0], [0.0; 3]),
+                    ([0.5, 0.4, 0.3], [0.3, -0.5, 0.2]),
+                ] {
+                    let norm = (direction[0] * direction[0]
+                        + direction[1] * direction[1]
+                        + direction[2] * direction[2])
+                        .sqrt();
+                    let pose_b = pose(direction.map(|x| d * x / norm), rotation);
+                    let case = Case {
+                        label: "far",
+                        a: a.clone(),
+                        b: b.clone(),
+                        pose_a: Pose::identity(),
+                        pose_b,
+                    };
+                    // At 10⁸ sizes the reference's force is limited by its rounding floor
+                    // (up to 10⁻¹¹ for the needle): its own estimate is added below.
+                    let mut fine = engine(InteractionOptions {
+                        relative_tolerance: 1e-14,
+                        method: MethodChoice::FixedRules,
+                        max_evaluations: 20_000_000,
+                        ..InteractionOptions::default()
+                    });
+                    let truth =
+                        best_effort(&mut fine, &case.a, &case.pose_a, &case.b, &case.pose_b);
+                    assert!(
+                        truth.error_estimate <= 1e-10,
+                        "reference {:e}",
+                        truth.error_estimate
+                    );
+                    for tolerance in [1e-6, 1e-9, 1e-12] {
+                        for surface in [SurfaceChoice::A, SurfaceChoice::B] {
+                            let mut e = engine(InteractionOptions {
+                                relative_tolerance: tolerance,
+                                method: MethodChoice::Nested,
+                                surface,
+                                ..InteractionOptions::default()
+                            });
+                            let r = e
+                                .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
+                                .unwrap();
+                            let err = errors(&r, &truth).max();
+                            let what = format!(
+                                "c/a {ratio} and {rb}, {separation} sizes along {direction:?} over {surface:?} at {tolerance:e}"
+                            );
+                            assert!(r.error_estimate <= tolerance, "{what}");
+                            assert!(
+                                err <= tolerance + truth.error_estimate,
+                                "{what}: error {err:e}"
+                            );
+                            if tolerance > 1e-12 {
+                                assert!(
+                                    err <= r.error_estimate + truth.error_estimate,
+                                    "{what}: error {err:e} > estimate {:e}",
+                                    r.error_estimate
+                                );
+                                worst_ratio = worst_ratio
+                                    .max((err - truth.error_estimate).max(0.0) / r.error_estimate);
+                            }
+                            cases += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    println!(
+        "{cases} cases; worst (true error - reference estimate) / estimate at 1e-6 and 1e-9: {worst_ratio:.3}"
+    );
+}
+
 /// Evaluation counts of the nested rule at 10⁻¹² for the founding paper's pair (snapshot).
 #[test]
 fn nested_evaluation_counts_for_the_paper_pair() {
@@ -245,7 +338,7 @@ fn nested_evaluation_counts_for_the_paper_pair() {
     );
 }
 
-const NESTED_SNAPSHOT: [usize; 5] = [775, 391, 323, 195, 99];
+const NESTED_SNAPSHOT: [usize; 5] = [775, 391, 323, 195, 63];
 
 /// The force-only evaluation ([`InteractionEngine::force`]): its estimate bounds the force's
 /// true error at every tolerance, and where it certifies with the same tables as the full

@@ -22,6 +22,13 @@
 //! tolerance needs ([`super::InteractionEngine`]'s start model), so that the coarser levels of
 //! the start grid, $(0, 1)$ and $(1, 0)$, are the predicted sufficient grid: when the
 //! prediction holds, the first grid is both the answer and its certificate.
+//!
+//! Far away (gap ratio at least 8, `NESTED_GEOMETRIC_GAP` of the engine) the integrand is
+//! analytic in a wide strip, the error falls geometrically from the coarsest levels, and a
+//! direction's error is estimated as $\delta_2(\delta_2/\delta_1)^{3/2}$
+//! ([`surfgrav_quadrature::geometric_estimate`]) instead of $\delta_2^2/\delta_1$, from a
+//! start one level coarser in both directions: the founding paper's pair at separation 30
+//! certifies 10⁻¹² on 63 nodes (9 azimuths × 7 heights) instead of 99.
 
 use super::kernel::{FrameMap, SolidSums};
 use super::rules::CLUSTERING;
