@@ -763,6 +763,9 @@ fn build_integrator(
             )
         })?;
         let tolerance = positive(t, "integrator.tolerance")?;
+        if let Err(message) = adaptive_tolerance_in_range(tolerance) {
+            return Err(loc.at(t, "integrator.tolerance", message));
+        }
         Ok(IntegratorChoice::Adaptive { method, tolerance })
     } else {
         if let Some(t) = &i.tolerance {
@@ -826,7 +829,11 @@ impl Scene {
                 ));
             }
             let tolerance = match (tolerance, self.integrator) {
-                (Some(t), _) => positive("--tolerance", t)?,
+                (Some(t), _) => {
+                    let t = positive("--tolerance", t)?;
+                    adaptive_tolerance_in_range(t).map_err(|m| format!("--tolerance: {m}"))?;
+                    t
+                }
                 (None, IntegratorChoice::Adaptive { tolerance, .. }) => tolerance,
                 (None, IntegratorChoice::Fixed { .. }) => {
                     return Err(format!(
@@ -941,6 +948,12 @@ mod tests {
                 "give integrator.step instead",
             ),
             (
+                "method = \"rk4\"\nstep = 0.1",
+                "method = \"dop853\"\ntolerance = 1e-18",
+                "tolerance = 1e-18",
+                "integrator.tolerance: must lie in [1e-15, 1)",
+            ),
+            (
                 "gravitational_constant = 1.0",
                 "gravitational_constant = 1.0\nunits = \"si\"",
                 "units = \"si\"",
@@ -1014,5 +1027,22 @@ mod tests {
         assert!(s.override_with(Some(-1.0), None, None, None).is_err());
         assert!(s.override_with(None, Some(0.1), None, None).is_err());
         assert!("euler".parse::<IntegratorName>().is_err());
+    }
+}
+
+/// An adaptive integrator's tolerance must lie in [`IntegratorKind::MIN_TOLERANCE`],
+/// [`IntegratorKind::MAX_TOLERANCE`]): below a few machine epsilons the error estimate is
+/// rounding noise and the step size collapses. Checked here so the message can point at the
+/// scene file's line or the command-line flag.
+fn adaptive_tolerance_in_range(tolerance: Real) -> Result<(), String> {
+    if (IntegratorKind::MIN_TOLERANCE..IntegratorKind::MAX_TOLERANCE).contains(&tolerance) {
+        Ok(())
+    } else {
+        Err(format!(
+            "must lie in [{:e}, {}) for an adaptive integrator (double precision cannot meet less \
+             than ~1e-15), got {tolerance:e}; 1e-15 to 1e-6 are sensible",
+            IntegratorKind::MIN_TOLERANCE,
+            IntegratorKind::MAX_TOLERANCE
+        ))
     }
 }

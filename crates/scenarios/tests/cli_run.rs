@@ -358,6 +358,17 @@ fn bad_input_is_one_line_exit_2_and_no_folder() {
             vec!["run", "paper-2s", "--integrator", "dopri5"],
             "needs --tolerance",
         ),
+        (
+            vec![
+                "run",
+                "paper-point",
+                "--integrator",
+                "dopri5",
+                "--tolerance",
+                "1e-300",
+            ],
+            "--tolerance: must lie in [1e-15, 1)",
+        ),
     ];
     let before = entries(&dir);
     for (args, expected) in cases {
@@ -395,20 +406,22 @@ fn bad_input_is_one_line_exit_2_and_no_folder() {
 #[test]
 fn failed_run_exits_1_and_leaves_no_folder() {
     let dir = scratch("failed");
-    // A tolerance no step can meet: the adaptive step falls below its floor.
-    let out = surfgrav_in(
-        &dir,
-        &[
-            "run",
-            "paper-point",
-            "--integrator",
-            "dopri5",
-            "--tolerance",
-            "1e-300",
-        ],
+    // Two point masses released at rest fall onto each other at t = (π/2) √(r0³ / (2GM)) =
+    // 14.546: the adaptive step collapses below its floor there, a failure found only while
+    // running (a tolerance out of range is bad input instead, exit 2).
+    let scene = "name = \"infall\"\nt_end = 300.0\n\
+        [body_a]\nshape = \"point\"\nmass = 1.0\nposition = [-3.5, 0.0, 0.0]\nvelocity = [0.0, 0.0, 0.0]\n\
+        [body_b]\nshape = \"point\"\nmass = 1.0\nposition = [3.5, 0.0, 0.0]\nvelocity = [0.0, 0.0, 0.0]\n\
+        [integrator]\nmethod = \"dopri5\"\ntolerance = 1e-10\n";
+    fs::write(dir.join("infall.toml"), scene).unwrap();
+    let out = surfgrav_in(&dir, &["run", "infall.toml"]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("at t = 14.54"),
+        "the failure names its time: {err}"
     );
-    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
-    assert_eq!(stderr(&out).lines().count(), 1, "{}", stderr(&out));
-    assert!(entries(&dir).is_empty(), "{:?}", entries(&dir));
+    assert_eq!(entries(&dir), ["infall.toml"]);
     fs::remove_dir_all(&dir).unwrap();
 }
