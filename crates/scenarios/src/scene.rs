@@ -866,6 +866,23 @@ impl Scene {
     }
 }
 
+/// An adaptive integrator's tolerance must lie in [`IntegratorKind::MIN_TOLERANCE`],
+/// [`IntegratorKind::MAX_TOLERANCE`]): below a few machine epsilons the error estimate is
+/// rounding noise and the step size collapses. Checked here so the message can point at the
+/// scene file's line or the command-line flag.
+fn adaptive_tolerance_in_range(tolerance: Real) -> Result<(), String> {
+    if (IntegratorKind::MIN_TOLERANCE..IntegratorKind::MAX_TOLERANCE).contains(&tolerance) {
+        Ok(())
+    } else {
+        Err(format!(
+            "must lie in [{:e}, {}) for an adaptive integrator (double precision cannot meet less \
+             than ~1e-15), got {tolerance:e}; 1e-15 to 1e-6 are sensible",
+            IntegratorKind::MIN_TOLERANCE,
+            IntegratorKind::MAX_TOLERANCE
+        ))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1027,22 +1044,5 @@ mod tests {
         assert!(s.override_with(Some(-1.0), None, None, None).is_err());
         assert!(s.override_with(None, Some(0.1), None, None).is_err());
         assert!("euler".parse::<IntegratorName>().is_err());
-    }
-}
-
-/// An adaptive integrator's tolerance must lie in [`IntegratorKind::MIN_TOLERANCE`],
-/// [`IntegratorKind::MAX_TOLERANCE`]): below a few machine epsilons the error estimate is
-/// rounding noise and the step size collapses. Checked here so the message can point at the
-/// scene file's line or the command-line flag.
-fn adaptive_tolerance_in_range(tolerance: Real) -> Result<(), String> {
-    if (IntegratorKind::MIN_TOLERANCE..IntegratorKind::MAX_TOLERANCE).contains(&tolerance) {
-        Ok(())
-    } else {
-        Err(format!(
-            "must lie in [{:e}, {}) for an adaptive integrator (double precision cannot meet less \
-             than ~1e-15), got {tolerance:e}; 1e-15 to 1e-6 are sensible",
-            IntegratorKind::MIN_TOLERANCE,
-            IntegratorKind::MAX_TOLERANCE
-        ))
     }
 }
