@@ -8,37 +8,16 @@
 
 mod common;
 
-use common::Kepler;
+use common::{paper_2s, paper_2s_initial, Kepler};
 use surfgrav_dynamics::tolerance::ENERGY_DRIFT_FACTOR;
 use surfgrav_dynamics::{
     run_with_diagnostics, total_energy, Adaptive, BodyState, EmbeddedPair, FixedScheme, FixedStep,
-    Integrator, SceneModel, SceneSettings, TwoBodyState,
+    Integrator, TwoBodyState,
 };
-use surfgrav_potentials::{Real, Spheroid, Vec3};
-use surfgrav_surfaces::interaction::Body;
+use surfgrav_potentials::{Real, Vec3};
 
 /// Issue 6: the adaptive integrator keeps max |E − E0|/|E0| ≤ 1e-13 on paper-2s.
 const PAPER_2S_ADAPTIVE_ENERGY: Real = 1e-13;
-
-fn spheroid() -> Body {
-    Body::spheroid(Spheroid::new(1.0, 0.25, 1.0).unwrap()).unwrap()
-}
-
-/// paper-2s: oblate spheroids a = 1, c = 0.25, m = 1, G = 1, R = (∓3.5, 0, 0), V = (0, ±0.2, 0).
-fn paper_2s_initial() -> TwoBodyState {
-    TwoBodyState::new(
-        BodyState::new(Vec3::new(-3.5, 0.0, 0.0), Vec3::new(0.0, 0.2, 0.0)),
-        BodyState::new(Vec3::new(3.5, 0.0, 0.0), Vec3::new(0.0, -0.2, 0.0)),
-    )
-}
-
-fn paper_2s(interpolate: bool) -> SceneModel {
-    let settings = SceneSettings {
-        interpolate,
-        ..SceneSettings::default()
-    };
-    SceneModel::build(spheroid(), spheroid(), &paper_2s_initial(), &settings).unwrap()
-}
 
 /// DOP853 at rtol = atol = 1e-15 over t = 300, with the tabulated V(r) and with the direct
 /// surface integral (engine tolerance 1e-12) at every stage. Measured when written: table

@@ -1,8 +1,9 @@
-//! Shared test fixtures: the analytic Kepler orbit.
+//! Shared test fixtures: the analytic Kepler orbit and the paper-2s scene.
 #![allow(dead_code)]
 
-use surfgrav_dynamics::{BodyState, PointMasses, Sample, TwoBodyState};
-use surfgrav_potentials::{Real, Vec3};
+use surfgrav_dynamics::{BodyState, PointMasses, Sample, SceneModel, SceneSettings, TwoBodyState};
+use surfgrav_potentials::{Real, Spheroid, Vec3};
+use surfgrav_surfaces::interaction::Body;
 
 /// A Kepler problem: two point masses of 0.5 each, G = 1 (μ = 1), semi-major axis 1,
 /// eccentricity `e`, starting at pericentre on +x moving toward +y, centre of mass at rest at the
@@ -69,4 +70,32 @@ pub fn paper_point() -> (PointMasses, TwoBodyState) {
             BodyState::new(Vec3::new(3.5, 0.0, 0.0), Vec3::new(0.0, -0.2, 0.0)),
         ),
     )
+}
+
+/// The founding paper's oblate spheroid: a = 1, c = 0.25, m = 1.
+pub fn paper_spheroid() -> Body {
+    Body::spheroid(Spheroid::new(1.0, 0.25, 1.0).unwrap()).unwrap()
+}
+
+/// paper-2s: oblate spheroids a = 1, c = 0.25, m = 1, G = 1, R = (∓3.5, 0, 0), V = (0, ±0.2, 0).
+pub fn paper_2s_initial() -> TwoBodyState {
+    TwoBodyState::new(
+        BodyState::new(Vec3::new(-3.5, 0.0, 0.0), Vec3::new(0.0, 0.2, 0.0)),
+        BodyState::new(Vec3::new(3.5, 0.0, 0.0), Vec3::new(0.0, -0.2, 0.0)),
+    )
+}
+
+/// The paper-2s scene model, tabulated or direct.
+pub fn paper_2s(interpolate: bool) -> SceneModel {
+    let settings = SceneSettings {
+        interpolate,
+        ..SceneSettings::default()
+    };
+    SceneModel::build(
+        paper_spheroid(),
+        paper_spheroid(),
+        &paper_2s_initial(),
+        &settings,
+    )
+    .unwrap()
 }
