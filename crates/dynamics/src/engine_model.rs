@@ -3,8 +3,9 @@
 //!
 //! # Direct path: [`EngineModel`]
 //!
-//! Every force evaluation calls [`InteractionEngine::interact`] for the two [`Body`]s at their
-//! poses (Conway's surface integrals, $\mathbf F_A = -\rho_A\oint_{S_A}\Phi_B\,\mathrm d\mathbf S$,
+//! Every force evaluation calls the engine for the two [`Body`]s at their poses (integrator
+//! stages [`InteractionEngine::force`], which certifies the force alone; energies and torques
+//! [`InteractionEngine::interact`]) (Conway's surface integrals, $\mathbf F_A = -\rho_A\oint_{S_A}\Phi_B\,\mathrm d\mathbf S$,
 //! sign convention $\Phi < 0$, $\mathbf F_A = -\nabla_{\mathbf R_A}V$, $V < 0$). The engine needs
 //! `&mut` access, the model trait is `&self` and `Send + Sync`, so the engine sits behind a
 //! [`Mutex`]. The engine's torques are reported through [`InteractionModel::torques`], so the
@@ -229,26 +230,26 @@ impl EngineModel {
     /// # Errors
     /// The engine's error, unchanged.
     pub fn interaction(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Interaction, EngineError> {
+        self.engine()
+            .interact(&self.body_a, pose_a, &self.body_b, pose_b)
+    }
+
+    /// The engine for one call, counted.
+    fn engine(&self) -> std::sync::MutexGuard<'_, InteractionEngine> {
         self.calls.fetch_add(1, Ordering::Relaxed);
         // A poisoned lock only means another thread panicked mid-call; the engine holds no
         // invariant a panic could break (options and a reusable workspace).
-        let mut engine = match self.engine.lock() {
+        match self.engine.lock() {
             Ok(guard) => guard,
             Err(poisoned) => poisoned.into_inner(),
-        };
-        engine.interact(&self.body_a, pose_a, &self.body_b, pose_b)
+        }
     }
 
     /// The force on A alone, certified on the force only: integrator stages need nothing else,
     /// and skipping the energy and torque sums saves 15-17 % per call on the paper's pair. The
     /// force is bit-identical to [`interaction`](Self::interaction)'s.
     fn force_only(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Vec3, InteractionError> {
-        self.calls.fetch_add(1, Ordering::Relaxed);
-        let mut engine = match self.engine.lock() {
-            Ok(guard) => guard,
-            Err(poisoned) => poisoned.into_inner(),
-        };
-        engine
+        self.engine()
             .force(&self.body_a, pose_a, &self.body_b, pose_b)
             .map(|f| f.force_on_a)
             .map_err(|e| self.map_error(e, pose_a, pose_b))
