@@ -520,13 +520,53 @@ impl<const N: usize> NestedCubature<N> {
         start: NestedLevels,
         tolerance: f64,
         max_evaluations: usize,
-        mut line: L,
+        line: L,
         mut norm: E,
         estimate_of: R,
     ) -> Result<NestedEstimate<N>, QuadratureError>
     where
         L: FnMut(usize, Range<usize>, &mut [f64; N]) -> usize,
         E: FnMut(&[f64; N], &[f64; N]) -> f64,
+        R: Fn(f64, f64) -> f64,
+    {
+        self.integrate_converted(
+            rule,
+            start,
+            tolerance,
+            max_evaluations,
+            line,
+            |_: &[f64; N]| (),
+            |a: &[f64; N], b: &[f64; N], _: &(), _: &()| norm(a, b),
+            estimate_of,
+        )
+        .map(|(estimate, ())| estimate)
+    }
+
+    /// As [`Self::integrate_with`], with each level's value turned by `convert` into the
+    /// caller's form (for example physical quantities in another frame) once per iteration,
+    /// and the changes measured by `norm(finer, coarser, converted finer, converted coarser)`:
+    /// five conversions per iteration (the value and the two coarser levels in each
+    /// direction) instead of two per `norm` call, for a caller whose conversion costs more
+    /// than the norm. Returns the estimate and the converted value.
+    ///
+    /// # Errors
+    /// As [`Self::integrate`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn integrate_converted<L, C, V, E, R>(
+        &mut self,
+        rule: &NestedTensorRule,
+        start: NestedLevels,
+        tolerance: f64,
+        max_evaluations: usize,
+        mut line: L,
+        mut convert: C,
+        mut norm: E,
+        estimate_of: R,
+    ) -> Result<(NestedEstimate<N>, V), QuadratureError>
+    where
+        L: FnMut(usize, Range<usize>, &mut [f64; N]) -> usize,
+        C: FnMut(&[f64; N]) -> V,
+        E: FnMut(&[f64; N], &[f64; N], &V, &V) -> f64,
         R: Fn(f64, f64) -> f64,
     {
         let (p, a) = (&rule.periodic, &rule.across);
@@ -555,8 +595,16 @@ impl<const N: usize> NestedCubature<N> {
             let periodic_2 = weighted(&self.lines[2], a.weights(j), p.step(i - 2));
             let across_1 = weighted(fine, a.weights(j - 1), p.step(i));
             let across_2 = weighted(fine, a.weights(j - 2), p.step(i));
-            let ep = estimate_of(norm(&periodic_1, &periodic_2), norm(&value, &periodic_1));
-            let ea = estimate_of(norm(&across_1, &across_2), norm(&value, &across_1));
+            let [v, p1, p2, a1, a2] =
+                [&value, &periodic_1, &periodic_2, &across_1, &across_2].map(&mut convert);
+            let ep = estimate_of(
+                norm(&periodic_1, &periodic_2, &p1, &p2),
+                norm(&value, &periodic_1, &v, &p1),
+            );
+            let ea = estimate_of(
+                norm(&across_1, &across_2, &a1, &a2),
+                norm(&value, &across_1, &v, &a1),
+            );
             let estimate = ep.max(ea);
             let result = |converged| NestedEstimate {
                 value,
@@ -571,12 +619,12 @@ impl<const N: usize> NestedCubature<N> {
                 converged,
             };
             if estimate <= tolerance {
-                return Ok(result(true));
+                return Ok((result(true), v));
             }
             let can_p = i < p.levels();
             let can_a = j < a.levels();
             let refine_periodic = match (can_p, can_a) {
-                (false, false) => return Ok(result(false)),
+                (false, false) => return Ok((result(false), v)),
                 (true, false) => true,
                 (false, true) => false,
                 (true, true) => ep >= ea,
@@ -590,7 +638,7 @@ impl<const N: usize> NestedCubature<N> {
                 (a.count(j + 1) - a.count(j)) * p.count(i)
             };
             if evaluations as f64 + new_nodes as f64 * per_node > max_evaluations as f64 {
-                return Ok(result(false));
+                return Ok((result(false), v));
             }
             if refine_periodic {
                 let range = p.count(i)..p.count(i + 1);
