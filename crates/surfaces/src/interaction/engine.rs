@@ -887,14 +887,12 @@ impl InteractionEngine {
             periodic: 2,
             across: 2,
         };
-        let mut memo: [Option<([Real; nested_rule::COMPONENTS], Values)>; 6] = [None; 6];
-        let mut next = 0usize;
         let budget = self.options.max_evaluations;
         let far_geometric = Self::far_nested(p);
         let workspace = &mut self.nested;
-        let estimate = with_field!(&y.field, |f| {
+        let (estimate, values) = with_field!(&y.field, |f| {
             let reference = f.potential(&p.map.apply(&Vec3::zeros()));
-            workspace.integrate_with(
+            workspace.integrate_converted(
                 &set.rule,
                 start,
                 tolerance,
@@ -910,20 +908,10 @@ impl InteractionEngine {
                         )
                     }
                 },
-                |value, coarse| {
-                    // Each level's values are asked for twice or more: convert each once.
-                    let mut converted = |sums: &[Real; nested_rule::COMPONENTS]| {
-                        if let Some((_, v)) = memo.iter().flatten().find(|(s, _)| s == sums) {
-                            return *v;
-                        }
-                        let v = values_of(sums);
-                        memo[next] = Some((*sums, v));
-                        next = (next + 1) % memo.len();
-                        v
-                    };
-                    let v = converted(value);
+                values_of,
+                |_, _, v: &Values, coarse: &Values| {
                     let change = v
-                        .relative_change(&converted(coarse))
+                        .relative_change(coarse)
                         .max(v.form_discrepancy(v.torque_on_a.norm()));
                     // Levels that agree to rounding: refining cannot lower the estimate.
                     if change <= v.rounding {
@@ -941,7 +929,6 @@ impl InteractionEngine {
                 },
             )
         })?;
-        let values = values_of(&estimate.value);
         let error = estimate
             .error_estimate
             .max(values.rounding)
@@ -1185,7 +1172,7 @@ fn evaluate_table(
 }
 
 fn symmetrise_solid(s: &SolidSums, axis: usize) -> SolidSums {
-    s.plus(&s.mirrored(axis))
+    s.symmetrised(axis)
 }
 
 fn symmetrise_lamina(s: &LaminaSums, axis: usize) -> LaminaSums {

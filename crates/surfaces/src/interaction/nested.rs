@@ -148,6 +148,58 @@ pub(crate) fn rule_set(
 /// [`super::kernel`]'s solid loop.
 pub(crate) const COMPONENTS: usize = 18;
 
+/// What one node of a line adds (see [`COMPONENTS`]); everything but the field is computed
+/// once for a node and its mirror image, which share $\tfrac12|\mathbf x|^2$, $\mathbf x\cdot\mathbf W$,
+/// $|\mathbf W|$, $|\mathbf x\times\mathbf W|$ and $|\mathbf x|$.
+struct NodeGeometry {
+    r: Vec3,
+    w: Vec3,
+    moment: Vec3,
+    half_x2: Real,
+    x_dot_w: Real,
+    w_norm: Real,
+    moment_norm: Real,
+    x_norm: Real,
+}
+
+/// Adds node `n`'s terms to `acc` (inlined into the line loop so the sums stay in registers).
+#[inline(always)]
+fn add_node<P: Potential + ?Sized, const FAR: bool>(
+    n: &NodeGeometry,
+    source: &P,
+    map: &FrameMap,
+    reference: Real,
+    acc: &mut [Real; COMPONENTS],
+) {
+    let field = source.field(&map.apply(&n.r));
+    let phi = field.potential;
+    let acceleration = map.back(&field.acceleration);
+    let relative = phi - reference;
+    let a_dot_w = acceleration.dot(&n.w);
+    let (e_potential, e_gradient) = (phi * n.x_dot_w, n.half_x2 * a_dot_w);
+    let gradient = n.w.cross(&acceleration) * n.half_x2;
+    acc[0] += n.w.x * relative;
+    acc[1] += n.w.y * relative;
+    acc[2] += n.w.z * relative;
+    acc[3] += n.moment.x * relative;
+    acc[4] += n.moment.y * relative;
+    acc[5] += n.moment.z * relative;
+    acc[6] += gradient.x;
+    acc[7] += gradient.y;
+    acc[8] += gradient.z;
+    acc[9] += e_potential + e_gradient;
+    acc[10] += relative.abs() * n.w_norm;
+    acc[11] += relative.abs() * n.moment_norm;
+    acc[12] += e_potential.abs() + e_gradient.abs();
+    if FAR {
+        acc[13] += n.r.x * a_dot_w;
+        acc[14] += n.r.y * a_dot_w;
+        acc[15] += n.r.z * a_dot_w;
+        acc[16] += n.x_norm * a_dot_w.abs();
+        acc[17] += phi.abs() * n.w_norm;
+    }
+}
+
 /// Adds to `out` the sum over azimuth nodes `range` of height node `k` (and, with `mirror`,
 /// of its mirror image $-z$) of the integrand times the azimuth factor (the acceleration form
 /// of the force only with `FAR`), for an ellipsoid of
@@ -169,6 +221,7 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
     let [a, b, c] = axes;
     let x = set.rule.across.nodes()[k];
     let z = c * x;
+    let z2 = z * z;
     let s = ((1.0 - x) * (1.0 + x)).sqrt();
     let (a_s, b_s) = (a * s, b * s);
     // dS per dφ dx (dz = c dx): c (b s cos φ, a s sin φ, ab z / c²).
@@ -177,46 +230,30 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
     let cos = &set.cos[range.clone()];
     let sin = &set.sin[range.clone()];
     let mut acc = [0.0; COMPONENTS];
-    let mut term = |r: Vec3, w: Vec3| {
-        let field = source.field(&map.apply(&r));
-        let phi = field.potential;
-        let acceleration = map.back(&field.acceleration);
-        let half_x2 = 0.5 * r.norm_squared();
-        let x_cross_w = r.cross(&w);
-        let relative = phi - reference;
-        let a_dot_w = acceleration.dot(&w);
-        let (e_potential, e_gradient) = (phi * r.dot(&w), half_x2 * a_dot_w);
-        let w_norm = w.norm();
-        let flux = w * relative;
-        let moment = x_cross_w * relative;
-        let gradient = w.cross(&acceleration) * half_x2;
-        acc[0] += flux.x;
-        acc[1] += flux.y;
-        acc[2] += flux.z;
-        acc[3] += moment.x;
-        acc[4] += moment.y;
-        acc[5] += moment.z;
-        acc[6] += gradient.x;
-        acc[7] += gradient.y;
-        acc[8] += gradient.z;
-        acc[9] += e_potential + e_gradient;
-        acc[10] += relative.abs() * w_norm;
-        acc[11] += relative.abs() * x_cross_w.norm();
-        acc[12] += e_potential.abs() + e_gradient.abs();
-        if FAR {
-            acc[13] += r.x * a_dot_w;
-            acc[14] += r.y * a_dot_w;
-            acc[15] += r.z * a_dot_w;
-            acc[16] += r.norm() * a_dot_w.abs();
-            acc[17] += phi.abs() * w_norm;
-        }
-    };
     for ((&f, &cp), &sp) in factors.iter().zip(cos).zip(sin) {
         let (rx, ry) = (a_s * cp, b_s * sp);
-        let (wx, wy) = (f * nx * cp, f * ny * sp);
-        term(Vec3::new(rx, ry, z), Vec3::new(wx, wy, f * nz));
+        let (wx, wy, wz) = (f * nx * cp, f * ny * sp, f * nz);
+        // x × W at (rx, ry, z); at the mirror image (rx, ry, −z) with (wx, wy, −wz) it is
+        // (−mx, −my, mz), of the same length.
+        let moment = Vec3::new(ry * wz - z * wy, z * wx - rx * wz, rx * wy - ry * wx);
+        let x2 = rx * rx + ry * ry + z2;
+        let mut node = NodeGeometry {
+            r: Vec3::new(rx, ry, z),
+            w: Vec3::new(wx, wy, wz),
+            moment,
+            half_x2: 0.5 * x2,
+            x_dot_w: rx * wx + ry * wy + z * wz,
+            w_norm: (wx * wx + wy * wy + wz * wz).sqrt(),
+            moment_norm: moment.norm(),
+            x_norm: if FAR { x2.sqrt() } else { 0.0 },
+        };
+        add_node::<P, FAR>(&node, source, map, reference, &mut acc);
         if mirror {
-            term(Vec3::new(rx, ry, -z), Vec3::new(wx, wy, -f * nz));
+            node.r.z = -z;
+            node.w.z = -wz;
+            node.moment.x = -moment.x;
+            node.moment.y = -moment.y;
+            add_node::<P, FAR>(&node, source, map, reference, &mut acc);
         }
     }
     for (o, v) in out.iter_mut().zip(acc) {
