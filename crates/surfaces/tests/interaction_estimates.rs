@@ -223,11 +223,12 @@ fn nested_estimates_bound_the_true_error() {
 /// The nested rule far away (gap ratio from 8 on: coarser start and the geometric estimate
 /// δ₂(δ₂/δ₁)^1.5, see `NESTED_GEOMETRIC_GAP`): spheroids c/a 0.01 … 100 (B the paper's
 /// spheroid or A's twin), separations 10 to 10⁸ sizes, B in the equatorial plane, at 53° and
-/// on the axis, and a generic pose. At 10⁻⁶ and 10⁻⁹ the estimate bounds the true error (plus
-/// the reference's estimate). At 10⁻¹² both the result and the 10⁻¹⁴ ladder reference sit at
-/// their rounding floors: there the tolerance is asserted (measured: up to 2.6·10⁻¹³ against
-/// rounding estimates near 10⁻¹⁵ for the flattest and longest bodies, as with the matched
-/// estimate δ₂²/δ₁ before the change, 3.3·10⁻¹³).
+/// on the axis, and a generic pose. At every tolerance (10⁻⁶, 10⁻⁹, 10⁻¹²) the estimate
+/// bounds the true error plus the 10⁻¹⁴ ladder reference's own estimate. At 10⁻¹² both sit at
+/// their rounding floors, which for the flattest bodies was underestimated until the
+/// potential form's floor counted the rounding of Φ itself (see `CANCELLATION_RATIO`): then
+/// 47 of the 2016 cases of the full grid had errors up to 2.6·10⁻¹³ against estimates near
+/// 10⁻¹⁵.
 #[test]
 fn nested_far_field_estimates_bound_the_true_error() {
     far_field_grid(&[0.01, 0.25, 1.0, 100.0], &[10.0, 30.0, 1e3, 1e8]);
@@ -247,7 +248,6 @@ fn nested_far_field_estimates_full_grid() {
 fn far_field_grid(ratios: &[f64], separations: &[f64]) {
     let mut worst_ratio: f64 = 0.0;
     let mut cases = 0;
-    let mut above_estimate = 0;
     for &ratio in ratios {
         for rb in [0.25, ratio] {
             let a = Body::spheroid(Spheroid::new(1.0, ratio, 1.0).unwrap()).unwrap();
@@ -308,18 +308,14 @@ fn far_field_grid(ratios: &[f64], separations: &[f64]) {
                                 err <= tolerance + truth.error_estimate,
                                 "{what}: error {err:e}"
                             );
-                            if tolerance > 1e-12 {
-                                assert!(
-                                    err <= r.error_estimate + truth.error_estimate,
-                                    "{what}: error {err:e} > estimate {:e}",
-                                    r.error_estimate
-                                );
-                                worst_ratio = worst_ratio
-                                    .max((err - truth.error_estimate).max(0.0) / r.error_estimate);
-                            }
-                            if err > r.error_estimate + truth.error_estimate {
-                                above_estimate += 1;
-                            }
+                            assert!(
+                                err <= r.error_estimate + truth.error_estimate,
+                                "{what}: error {err:e} > estimate {:e} (reference's {:e})",
+                                r.error_estimate,
+                                truth.error_estimate
+                            );
+                            worst_ratio = worst_ratio
+                                .max((err - truth.error_estimate).max(0.0) / r.error_estimate);
                             cases += 1;
                         }
                     }
@@ -327,9 +323,7 @@ fn far_field_grid(ratios: &[f64], separations: &[f64]) {
             }
         }
     }
-    println!(
-        "{cases} cases; worst (true error - reference estimate) / estimate at 1e-6 and 1e-9: {worst_ratio:.3}; above the estimate (all at 1e-12, rounding floor): {above_estimate}"
-    );
+    println!("{cases} cases; worst (true error - reference estimate) / estimate: {worst_ratio:.3}");
 }
 
 /// Evaluation counts of the nested rule at 10⁻¹² for the founding paper's pair (snapshot).

@@ -65,11 +65,9 @@ pub const NESTED_HEIGHT_SCALE: Real = 2.4;
 /// separation 30 certify 10⁻¹² only on 99 nodes (error 10⁻¹⁵) where a 35-node table reaches
 /// 10⁻¹⁵. Measured over separations 10 to 10⁸ sizes, c/a 0.01 to 100, four directions and
 /// tolerances 10⁻⁶, 10⁻⁹, 10⁻¹² (2016 cases, `nested_far_field_estimates_full_grid` in
-/// `tests/interaction_estimates.rs`): no true error above the estimate at 10⁻⁶ and 10⁻⁹; at
-/// 10⁻¹² 47 above it at the rounding floor (errors up to 2.6·10⁻¹³ against rounding
-/// estimates near 10⁻¹⁵; with $\delta_2^2/\delta_1$ before the change: 115 cases, up to
-/// 3.3·10⁻¹³, 72 of them at 10⁻⁶ and 10⁻⁹), none above the tolerance. With this exponent set
-/// to 2 (the bare geometric extrapolation) 34 cases missed the tolerance.
+/// `tests/interaction_estimates.rs`): no true error above the estimate (with $\delta_2^2/\delta_1$
+/// before the change, 72 cases above it at 10⁻⁶ and 10⁻⁹). With this exponent set to 2 (the
+/// bare geometric extrapolation) 34 cases missed the tolerance.
 pub const NESTED_GEOMETRIC_GAP: Real = 8.0;
 
 /// The exponent $p$ of the nested rule's far-field estimate (see [`NESTED_GEOMETRIC_GAP`]):
@@ -87,8 +85,22 @@ pub const NESTED_GEOMETRIC_EXPONENT: Real = 1.5;
 /// form stalls at $10^{-8}$ relative and the acceleration form reaches $10^{-16}$; a flat
 /// spheroid (c/a = 0.0013) 89 radii from a needle: $3\times10^{-12}$ against $4\times10^{-13}$.
 /// Nearer, only the potential form is summed (the extra terms cost 8 % of the loop), which
-/// leaves the founding paper's pair unchanged up to separation 30.
+/// leaves the founding paper's pair unchanged up to separation 30; a flat body is far sooner
+/// (see [`CANCELLATION_RATIO`]).
 pub const FAR_FIELD_RATIO: Real = 40.0;
+
+/// Beyond this many cancellation radii (`cancellation_radius`: $3/(1/a + 1/b + 1/c)$ for an
+/// ellipsoid X) the acceleration form is summed too: there the potential form's terms exceed
+/// the force about $d/R$ times and its rounding floor, $4\epsilon\rho\sum(|\Phi_k - \Phi_0| +
+/// |\Phi_k|)|\mathbf W_k|$, reaches about $120 \cdot 4\epsilon \approx 10^{-13}$ relative, a
+/// tenth of the default tolerance. This is what matters for a flat body: spheroids of
+/// c/a = 0.01 stacked 10 to 30 radii apart along their axes have a force whose potential form
+/// scatters by up to $6\cdot10^{-13}$ between tables of 40 to 400 nodes (rounding, the faces'
+/// terms cancelling); measured before this rule, 47 of the 2016 far-field cases of
+/// `tests/interaction_estimates.rs` had true errors up to $2.6\cdot10^{-13}$ above estimates
+/// near $10^{-15}$, none after. A sphere's cancellation radius is its radius, so for round
+/// bodies [`FAR_FIELD_RATIO`] decides.
+pub const CANCELLATION_RATIO: Real = 120.0;
 
 /// The relative accuracy reported for the closed forms (the potentials crate's documented
 /// accuracy of the acceleration, which dominates).
@@ -694,7 +706,8 @@ impl InteractionEngine {
             sin_elevation,
             gap_ratio,
             node_check: unknown_shape && bounding_overlap,
-            far: distance > FAR_FIELD_RATIO * x.bounding_radius(),
+            far: distance > FAR_FIELD_RATIO * x.bounding_radius()
+                || distance > CANCELLATION_RATIO * cancellation_radius(x),
         })
     }
 
@@ -1084,16 +1097,18 @@ fn solid_values(mut s: SolidSums, density: Real, p: &Placement) -> Values {
         s = symmetrise_solid(&s, 2);
     }
     let mut r = s.integrals(density, 0);
-    // The force's form (see FAR_FIELD_RATIO): summed only far away, where Φ − Φ₀ keeps the
-    // absolute rounding of Φ.
-    let potential_floor = s.potential_magnitude;
+    // The potential form's rounding: that of its terms, and the absolute rounding of Φ itself,
+    // which Φ − Φ₀ keeps (Σ|Φ||W|: it dominates where the terms cancel to a force small next
+    // to ρ|Φ| times the area, far away or for a flat body, whose faces' terms nearly cancel).
+    let potential_floor = s.potential_flux_magnitude + s.potential_magnitude;
+    // The acceleration form (see FAR_FIELD_RATIO), where summed and its floor is lower.
     let acceleration_floor = s.acceleration_flux_magnitude;
     let acceleration_form = acceleration_floor > 0.0 && acceleration_floor < potential_floor;
     let force_size = if acceleration_form {
         r.force = density * s.acceleration_flux;
         acceleration_floor
     } else {
-        s.potential_flux_magnitude
+        potential_floor
     };
     let mut values = assemble(
         p,
@@ -1168,6 +1183,22 @@ fn evaluate_table(
             );
             values
         }
+    }
+}
+
+/// The length $R$ for which the potential form's terms exceed the force $\mathbf F =
+/// -\rho\oint\Phi\,\mathrm d\mathbf S$ by about distance$/R$ (see [`FAR_FIELD_RATIO`]): the
+/// ratio is $|\Phi|\,\mathrm{area}/(|\nabla\Phi|\,\mathrm{volume}) \approx d\,A/V$, and for an
+/// ellipsoid $A/V \approx 1/a + 1/b + 1/c$ (exact for a sphere, $3/R$; 102 against the exact
+/// 150 for a = b = 1, c = 0.01), so $R = 3/(1/a + 1/b + 1/c)$, which a flat body makes small.
+/// Other shapes: the bounding radius.
+fn cancellation_radius(x: &Body) -> Real {
+    match x.shape() {
+        BodyShape::Solid(e) => {
+            let inverse = 1.0 / e.x_semi_axis() + 1.0 / e.y_semi_axis() + 1.0 / e.z_semi_axis();
+            (3.0 / inverse).min(x.bounding_radius())
+        }
+        _ => x.bounding_radius(),
     }
 }
 

@@ -194,6 +194,7 @@ pub(crate) fn solid_sums<P: Potential + ?Sized>(
     let mut gradient_moment = CompensatedSum3::new();
     let mut energy = CompensatedSum::new();
     let (mut flux_size, mut moment_size, mut energy_size) = (0.0, 0.0, 0.0);
+    let mut potential_size = 0.0;
     // ∮ dS = 0 and ∮ x × dS = 0: the potential at the centroid can be taken out of the force
     // and torque sums, whose terms then shrink by the ratio of size to distance.
     let reference = source.potential(&map.apply(origin));
@@ -215,7 +216,9 @@ pub(crate) fn solid_sums<P: Potential + ?Sized>(
             m += x_cross_w * relative;
             g += w.cross(&a) * half_x2;
             e += e_potential + e_gradient;
-            flux_size += relative.abs() * w.norm();
+            let w_norm = w.norm();
+            flux_size += relative.abs() * w_norm;
+            potential_size += phi.abs() * w_norm;
             moment_size += relative.abs() * x_cross_w.norm();
             energy_size += e_potential.abs() + e_gradient.abs();
         }
@@ -232,6 +235,7 @@ pub(crate) fn solid_sums<P: Potential + ?Sized>(
         potential_flux_magnitude: flux_size,
         potential_moment_magnitude: moment_size,
         energy_flux_magnitude: energy_size,
+        potential_magnitude: potential_size,
         ..SolidSums::default()
     }
 }
@@ -333,8 +337,8 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized, const FAR: bool>(
             if FAR {
                 af += k.x * a_dot_w;
                 acceleration_size += k.x_norm * a_dot_w.abs();
-                potential_size += phi.abs() * k.w_norm;
             }
+            potential_size += phi.abs() * k.w_norm;
             let relative = phi - reference;
             f += w * relative;
             m += k.moment * relative;
@@ -392,11 +396,11 @@ pub(crate) fn solid_force_sums<P: Potential + ?Sized, const FAR: bool>(
                 let a_dot_w = map.back(&field.acceleration).dot(w);
                 af += k.x * a_dot_w;
                 acceleration_size += k.x_norm * a_dot_w.abs();
-                potential_size += field.potential.abs() * k.w_norm;
                 field.potential
             } else {
                 source.potential(&map.apply(r))
             };
+            potential_size += phi.abs() * k.w_norm;
             let relative = phi - reference;
             f += w * relative;
             size += relative.abs() * k.w_norm;
@@ -603,9 +607,11 @@ pub(crate) fn lamina_sums<P: Potential + ?Sized>(
     {
         let mut s = Vec3::zeros();
         for (r, nu) in block_points.iter().zip(block_normals) {
-            let relative = source.potential(&map.apply(r)) - reference;
+            let phi = source.potential(&map.apply(r));
+            let relative = phi - reference;
             s += nu * relative;
-            force_size += relative.abs() * nu.norm();
+            // The rounding of Φ itself stays in Φ − Φ₀ (see `SolidSums::potential_magnitude`).
+            force_size += (relative.abs() + phi.abs()) * nu.norm();
         }
         rim.add(&s);
     }

@@ -191,12 +191,12 @@ fn add_node<P: Potential + ?Sized, const FAR: bool>(
     acc[10] += relative.abs() * n.w_norm;
     acc[11] += relative.abs() * n.moment_norm;
     acc[12] += e_potential.abs() + e_gradient.abs();
+    acc[17] += phi.abs() * n.w_norm;
     if FAR {
         acc[13] += n.r.x * a_dot_w;
         acc[14] += n.r.y * a_dot_w;
         acc[15] += n.r.z * a_dot_w;
         acc[16] += n.x_norm * a_dot_w.abs();
-        acc[17] += phi.abs() * n.w_norm;
     }
 }
 
@@ -280,6 +280,6 @@ pub(crate) fn solid_sums_from(v: &[Real; COMPONENTS], far: bool) -> SolidSums {
         energy_flux_magnitude: v[12],
         acceleration_flux: Vec3::new(v[13], v[14], v[15]) * far,
         acceleration_flux_magnitude: v[16] * far,
-        potential_magnitude: v[17] * far,
+        potential_magnitude: v[17],
     }
 }
