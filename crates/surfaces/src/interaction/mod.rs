@@ -87,7 +87,11 @@
 //! the potential at the integrated body's centroid is subtracted from $\Phi_B$ in the force and
 //! torque sums (and around a lamina's rim): the terms shrink by the ratio of size to distance,
 //! and so does their rounding. What remains is bounded by $4\epsilon\sum_k|t_k|$ per sum and
-//! enters the error estimate ([`ROUNDING_PER_TERM`]).
+//! enters the error estimate ([`ROUNDING_PER_TERM`]); the force's bound adds the absolute
+//! rounding of $\Phi_B$ itself, $4\epsilon\sum_k|\Phi_k||\mathbf W_k|$, which the difference
+//! keeps. That term dominates far away and for flat bodies (whose faces' terms cancel), where
+//! the acceleration form $\rho\oint\mathbf x\,(\mathbf a\cdot\mathrm d\mathbf S)$ is summed
+//! too and used when its bound is lower ([`FAR_FIELD_RATIO`], [`CANCELLATION_RATIO`]).
 //!
 //! # Performance
 //!
@@ -97,11 +101,15 @@
 //! evaluations), 20 µs at 2.55, 16 µs at 3 (210), 10 µs at 7, 8 µs at 30; the true errors are
 //! below $4\times10^{-15}$. A single uncertified table reaching $10^{-12}$ costs about 6 µs at
 //! separation 3: the certificate (a second, finer table) is most of the price. The adaptive
-//! rule costs 25–90 times the ladder at $10^{-12}$. [`InteractionEngine::force`] (the force
-//! alone, for integrator stages) saves 15–17 % (13.6 against 16.1 µs at separation 3). The
-//! node loop spends about 70 ns per node,
-//! three quarters of it in the spheroid's field; through `dyn Potential` it is within 2 % of
-//! the monomorphised loop.
+//! rule costs 25–90 times the ladder at $10^{-12}$; the nested doubling rule
+//! ([`MethodChoice::Nested`]) certifies $10^{-12}$ at 1.9–2.7 times the time of the cheapest
+//! single table that is as accurate (uncertified), at all five separations.
+//! [`InteractionEngine::force`] (the force alone, for integrator stages) saves 15–17 % (13.6
+//! against 16.1 µs at separation 3). The node loop spends about 70 ns per node, three quarters
+//! of it in the spheroid's field; through `dyn Potential` the same loop costs 32–39 % more
+//! (example `work_precision`, last lines). Machines of this kind differ: on a slower one
+//! (2.0 GHz, the paper's force at separation 3 taking 10.95 ms in Python against 4.3 ms) the
+//! ladder costs 66 µs at 2.1, 27.6 µs at 3 and 14.4 µs at 30.
 //!
 //! # Overlap
 //!
@@ -121,7 +129,7 @@ pub mod work_precision;
 pub use body::{Body, BodyShape};
 pub use engine::{
     ForceInteraction, Interaction, InteractionEngine, InteractionOptions, Method, MethodChoice,
-    SurfaceChoice, ANALYTIC_RELATIVE_ERROR, ROUNDING_PER_TERM,
+    SurfaceChoice, ANALYTIC_RELATIVE_ERROR, CANCELLATION_RATIO, FAR_FIELD_RATIO, ROUNDING_PER_TERM,
 };
 pub use error::{InteractionError, Side};
 pub use kernel::{
