@@ -545,9 +545,10 @@ impl<const N: usize> NestedCubature<N> {
     /// As [`Self::integrate_with`], with each level's value turned by `convert` into the
     /// caller's form (for example physical quantities in another frame) once per iteration,
     /// and the changes measured by `norm(finer, coarser, converted finer, converted coarser)`:
-    /// five conversions per iteration (the value and the two coarser levels in each
-    /// direction) instead of two per `norm` call, for a caller whose conversion costs more
-    /// than the norm. Returns the estimate and the converted value.
+    /// five conversions on the first iteration (the value and the two coarser levels in each
+    /// direction) and three after a doubling (two of the five are the last iteration's),
+    /// instead of two per `norm` call, for a caller whose conversion costs more than the norm.
+    /// Returns the estimate and the converted value.
     ///
     /// # Errors
     /// As [`Self::integrate`].
@@ -585,6 +586,10 @@ impl<const N: usize> NestedCubature<N> {
             lines.clear();
         }
         let mut evaluations = self.add_lines(p, 0..a.count(j), i, &mut line);
+        // After a doubling, the two coarser levels in the doubled direction are the last
+        // iteration's value and its first coarser level, bit for bit (the same line sums and
+        // weights): their conversions are carried over.
+        let mut carried: Option<(bool, V, V)> = None;
         loop {
             if self.lines[0].iter().flatten().any(|x| !x.is_finite()) {
                 return Err(QuadratureError::NonFiniteIntegral);
@@ -595,8 +600,27 @@ impl<const N: usize> NestedCubature<N> {
             let periodic_2 = weighted(&self.lines[2], a.weights(j), p.step(i - 2));
             let across_1 = weighted(fine, a.weights(j - 1), p.step(i));
             let across_2 = weighted(fine, a.weights(j - 2), p.step(i));
-            let [v, p1, p2, a1, a2] =
-                [&value, &periodic_1, &periodic_2, &across_1, &across_2].map(&mut convert);
+            let v = convert(&value);
+            let (p1, p2, a1, a2) = match carried.take() {
+                Some((true, old_value, old_periodic_1)) => (
+                    old_value,
+                    old_periodic_1,
+                    convert(&across_1),
+                    convert(&across_2),
+                ),
+                Some((false, old_value, old_across_1)) => (
+                    convert(&periodic_1),
+                    convert(&periodic_2),
+                    old_value,
+                    old_across_1,
+                ),
+                None => (
+                    convert(&periodic_1),
+                    convert(&periodic_2),
+                    convert(&across_1),
+                    convert(&across_2),
+                ),
+            };
             let ep = estimate_of(
                 norm(&periodic_1, &periodic_2, &p1, &p2),
                 norm(&value, &periodic_1, &v, &p1),
@@ -640,6 +664,11 @@ impl<const N: usize> NestedCubature<N> {
             if evaluations as f64 + new_nodes as f64 * per_node > max_evaluations as f64 {
                 return Ok((result(false), v));
             }
+            carried = Some(if refine_periodic {
+                (true, v, p1)
+            } else {
+                (false, v, a1)
+            });
             if refine_periodic {
                 let range = p.count(i)..p.count(i + 1);
                 let [fine, coarse, coarser] = &mut self.lines;
