@@ -55,7 +55,7 @@ pub const NESTED_HEIGHT_SCALE: Real = 2.4;
 
 /// From this gap ratio $g = (d - R_X - R_Y^{\mathrm{sing}})/R_X$ on (centroid distance $d$,
 /// X's bounding radius $R_X$, the radius of Y's singular set), the nested rule starts one
-/// level coarser in both directions and estimates a direction's error geometrically,
+/// level coarser in height and estimates a direction's error geometrically,
 /// $\delta_2(\delta_2/\delta_1)^{p}$ with $p$ = [`NESTED_GEOMETRIC_EXPONENT`]
 /// ([`surfgrav_quadrature::geometric_estimate`]), instead of $\delta_2^2/\delta_1$. There
 /// the integrand is analytic in a strip of half-width about $\operatorname{acosh}(1 + g)$ in
@@ -372,6 +372,8 @@ pub struct InteractionEngine {
     adaptive: Option<AdaptiveCubature<10>>,
     /// The nested rule's workspace (line sums), kept.
     nested: NestedCubature<{ nested_rule::COMPONENTS }>,
+    /// The nested rule's node geometry, kept ([`nested_rule::GeometryCache`]).
+    nested_geometry: nested_rule::GeometryCache,
     /// Set during [`InteractionEngine::force`]: the fixed rules sum and certify the force only.
     force_only: bool,
 }
@@ -428,6 +430,7 @@ impl InteractionEngine {
             options,
             adaptive: None,
             nested: NestedCubature::new(),
+            nested_geometry: nested_rule::GeometryCache::default(),
             force_only: false,
         })
     }
@@ -903,6 +906,13 @@ impl InteractionEngine {
         let budget = self.options.max_evaluations;
         let far_geometric = Self::far_nested(p);
         let workspace = &mut self.nested;
+        let geometry = self.nested_geometry.get(
+            azimuth_base,
+            p.clustering,
+            p.half_azimuth,
+            height_base,
+            axes,
+        );
         let (estimate, values) = with_field!(&y.field, |f| {
             let reference = f.potential(&p.map.apply(&Vec3::zeros()));
             workspace.integrate_converted(
@@ -911,14 +921,11 @@ impl InteractionEngine {
                 tolerance,
                 budget,
                 |k, range, out| {
+                    let nodes = geometry.line(&set, axes, k, range);
                     if p.far {
-                        ellipsoid_line::<_, true>(
-                            &set, axes, k, range, mirror, f, &p.map, reference, out,
-                        )
+                        ellipsoid_line::<_, true>(nodes, mirror, f, &p.map, reference, out)
                     } else {
-                        ellipsoid_line::<_, false>(
-                            &set, axes, k, range, mirror, f, &p.map, reference, out,
-                        )
+                        ellipsoid_line::<_, false>(nodes, mirror, f, &p.map, reference, out)
                     }
                 },
                 values_of,
@@ -958,7 +965,8 @@ impl InteractionEngine {
     /// [`NESTED_AZIMUTH_SCALE`] times the ladder's predicted azimuth count and
     /// [`NESTED_HEIGHT_SCALE`] times its transverse count, at least 11 heights per half (fewer
     /// make the rate estimate rest on 1- and 3-node levels, which stay pre-asymptotic); far
-    /// away ([`NESTED_GEOMETRIC_GAP`]) both halved (at least 2), for the geometric estimate.
+    /// away ([`NESTED_GEOMETRIC_GAP`]) the height base halved (at least 2), for the geometric
+    /// estimate.
     fn nested_bases(&self, p: &Placement) -> (usize, usize) {
         let t = self.start_transverse(p);
         let kappa = TRANSVERSE_RATIO[usize::from(p.ratio)];
@@ -967,9 +975,12 @@ impl InteractionEngine {
         let height =
             round_base(((NESTED_HEIGHT_SCALE * Real::from(t) + 1.0) / 4.0).round() as usize).max(3);
         if Self::far_nested(p) {
-            // One level coarser: the geometric estimate certifies from coarser levels.
-            let half_even = |n: usize| (n / 2).max(2).next_multiple_of(2);
-            return (half_even(azimuth), (height / 2).max(2));
+            // One level coarser in height: the geometric estimate certifies from coarser
+            // levels. Halving the azimuth base too saves 1.4 % of the evaluations over the
+            // 2016 far-field cases of `tests/interaction_estimates.rs` (203,060 against
+            // 205,952) but often costs a second iteration: the founding paper's pair at
+            // separation 30 takes the same 63 nodes in 11.4 µs instead of 9.1 µs.
+            return (azimuth, (height / 2).max(2));
         }
         (azimuth, height)
     }

@@ -27,8 +27,8 @@
 //! analytic in a wide strip, the error falls geometrically from the coarsest levels, and a
 //! direction's error is estimated as $\delta_2(\delta_2/\delta_1)^{3/2}$
 //! ([`surfgrav_quadrature::geometric_estimate`]) instead of $\delta_2^2/\delta_1$, from a
-//! start one level coarser in both directions: the founding paper's pair at separation 30
-//! certifies 10⁻¹² on 63 nodes (9 azimuths × 7 heights) instead of 99.
+//! start one level coarser in height: the founding paper's pair at separation 30 certifies
+//! 10⁻¹² on 63 nodes (9 azimuths × 7 heights) instead of 99.
 
 use super::kernel::{FrameMap, SolidSums};
 use super::rules::CLUSTERING;
@@ -37,7 +37,7 @@ use std::collections::HashMap;
 use std::f64::consts::{PI, TAU};
 use std::ops::Range;
 use std::sync::{Arc, Mutex, OnceLock};
-use surfgrav_potentials::Potential;
+use surfgrav_potentials::{Field, Potential};
 use surfgrav_quadrature::{
     Interval, NestedFejer, NestedTensorRule, NestedTrapezoid, QuadratureError,
 };
@@ -151,7 +151,8 @@ pub(crate) const COMPONENTS: usize = 18;
 /// What one node of a line adds (see [`COMPONENTS`]); everything but the field is computed
 /// once for a node and its mirror image, which share $\tfrac12|\mathbf x|^2$, $\mathbf x\cdot\mathbf W$,
 /// $|\mathbf W|$, $|\mathbf x\times\mathbf W|$ and $|\mathbf x|$.
-struct NodeGeometry {
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct NodeGeometry {
     r: Vec3,
     w: Vec3,
     moment: Vec3,
@@ -162,16 +163,16 @@ struct NodeGeometry {
     x_norm: Real,
 }
 
-/// Adds node `n`'s terms to `acc` (inlined into the line loop so the sums stay in registers).
+/// Adds node `n`'s terms, with the source's `field` there, to `acc` (inlined into the line
+/// loop so the sums stay in registers).
 #[inline(always)]
-fn add_node<P: Potential + ?Sized, const FAR: bool>(
+fn add_node<const FAR: bool>(
     n: &NodeGeometry,
-    source: &P,
+    field: &Field,
     map: &FrameMap,
     reference: Real,
     acc: &mut [Real; COMPONENTS],
 ) {
-    let field = source.field(&map.apply(&n.r));
     let phi = field.potential;
     let acceleration = map.back(&field.acceleration);
     let relative = phi - reference;
@@ -200,24 +201,15 @@ fn add_node<P: Potential + ?Sized, const FAR: bool>(
     }
 }
 
-/// Adds to `out` the sum over azimuth nodes `range` of height node `k` (and, with `mirror`,
-/// of its mirror image $-z$) of the integrand times the azimuth factor (the acceleration form
-/// of the force only with `FAR`), for an ellipsoid of
-/// semi-axes `axes` in the field of `source` (`reference` its potential at the centroid).
-/// Returns the evaluations spent.
-#[allow(clippy::too_many_arguments)]
-#[inline]
-pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
+/// The geometry of the nodes `range` (nested order) of height node `k` of an ellipsoid of
+/// semi-axes `axes`, appended to `out`.
+fn line_geometry(
     set: &NestedRuleSet,
     axes: [Real; 3],
     k: usize,
     range: Range<usize>,
-    mirror: bool,
-    source: &P,
-    map: &FrameMap,
-    reference: Real,
-    out: &mut [Real; COMPONENTS],
-) -> usize {
+    out: &mut Vec<NodeGeometry>,
+) {
     let [a, b, c] = axes;
     let x = set.rule.across.nodes()[k];
     let z = c * x;
@@ -228,16 +220,13 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
     let (nx, ny, nz) = (c * b_s, c * a_s, a * b * x);
     let factors = &set.rule.periodic.factors()[range.clone()];
     let cos = &set.cos[range.clone()];
-    let sin = &set.sin[range.clone()];
-    let mut acc = [0.0; COMPONENTS];
-    for ((&f, &cp), &sp) in factors.iter().zip(cos).zip(sin) {
+    let sin = &set.sin[range];
+    out.extend(factors.iter().zip(cos).zip(sin).map(|((&f, &cp), &sp)| {
         let (rx, ry) = (a_s * cp, b_s * sp);
         let (wx, wy, wz) = (f * nx * cp, f * ny * sp, f * nz);
-        // x × W at (rx, ry, z); at the mirror image (rx, ry, −z) with (wx, wy, −wz) it is
-        // (−mx, −my, mz), of the same length.
         let moment = Vec3::new(ry * wz - z * wy, z * wx - rx * wz, rx * wy - ry * wx);
         let x2 = rx * rx + ry * ry + z2;
-        let mut node = NodeGeometry {
+        NodeGeometry {
             r: Vec3::new(rx, ry, z),
             w: Vec3::new(wx, wy, wz),
             moment,
@@ -245,24 +234,145 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
             x_dot_w: rx * wx + ry * wy + z * wz,
             w_norm: (wx * wx + wy * wy + wz * wz).sqrt(),
             moment_norm: moment.norm(),
-            x_norm: if FAR { x2.sqrt() } else { 0.0 },
-        };
-        add_node::<P, FAR>(&node, source, map, reference, &mut acc);
+            x_norm: x2.sqrt(),
+        }
+    }));
+}
+
+/// Nodes cached per geometry (about 110 bytes each): beyond, a line's geometry is computed
+/// for the call only.
+pub(crate) const MAX_CACHED_NODES: usize = 1 << 16;
+
+/// Geometries kept (an engine alternates between a pair's two bodies, or a few pairs).
+const CACHED_GEOMETRIES: usize = 4;
+
+/// The node geometry of one ellipsoid under one nested rule set, line by line in nested
+/// order: the nested rule's counterpart of a fixed table's per-node constants, built on first
+/// use and kept by the engine.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct LineGeometry {
+    lines: Vec<Vec<NodeGeometry>>,
+    cached: usize,
+    scratch: Vec<NodeGeometry>,
+}
+
+impl LineGeometry {
+    /// The geometry of nodes `range` of line `k` (computed now if not cached).
+    pub(crate) fn line(
+        &mut self,
+        set: &NestedRuleSet,
+        axes: [Real; 3],
+        k: usize,
+        range: Range<usize>,
+    ) -> &[NodeGeometry] {
+        if self.lines.len() <= k {
+            self.lines.resize_with(k + 1, Vec::new);
+        }
+        let have = self.lines[k].len();
+        if have < range.end {
+            if self.cached + (range.end - have) > MAX_CACHED_NODES {
+                self.scratch.clear();
+                line_geometry(set, axes, k, range, &mut self.scratch);
+                return &self.scratch;
+            }
+            line_geometry(set, axes, k, have..range.end, &mut self.lines[k]);
+            self.cached += range.end - have;
+        }
+        &self.lines[k][range]
+    }
+}
+
+/// What identifies a [`LineGeometry`]: the rule set's key and the semi-axes' bits.
+type GeometryKey = (RuleKey, [u64; 3]);
+
+/// The engine's [`LineGeometry`] store, most recently used first.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct GeometryCache {
+    entries: Vec<(GeometryKey, LineGeometry)>,
+}
+
+impl GeometryCache {
+    /// The geometry of an ellipsoid of semi-axes `axes` under the rule set of these bases.
+    pub(crate) fn get(
+        &mut self,
+        azimuth_base: usize,
+        clustering: u8,
+        half_azimuth: bool,
+        height_base: usize,
+        axes: [Real; 3],
+    ) -> &mut LineGeometry {
+        let key = (
+            (azimuth_base, clustering, half_azimuth, height_base),
+            axes.map(Real::to_bits),
+        );
+        match self.entries.iter().position(|(k, _)| *k == key) {
+            Some(i) => self.entries[..=i].rotate_right(1),
+            None => {
+                if self.entries.len() >= CACHED_GEOMETRIES {
+                    self.entries.pop();
+                }
+                self.entries.insert(0, (key, LineGeometry::default()));
+            }
+        }
+        &mut self.entries[0].1
+    }
+}
+
+/// Adds to `out` the sum over `nodes` (a range of one height line, with, when `mirror`, their
+/// mirror images $-z$) of the integrand times the azimuth factor (the acceleration form of the
+/// force only with `FAR`), in the field of `source` (`reference` its potential at the
+/// centroid). Returns the evaluations spent.
+#[inline]
+pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
+    nodes: &[NodeGeometry],
+    mirror: bool,
+    source: &P,
+    map: &FrameMap,
+    reference: Real,
+    out: &mut [Real; COMPONENTS],
+) -> usize {
+    let mut acc = [0.0; COMPONENTS];
+    // The mirror image (rx, ry, −z) with W = (wx, wy, −wz): x × W = (−mx, −my, mz), of the
+    // same length; every other constant is shared.
+    let mirrored = |n: &NodeGeometry| {
+        let mut m = *n;
+        m.r.z = -n.r.z;
+        m.w.z = -n.w.z;
+        m.moment.x = -n.moment.x;
+        m.moment.y = -n.moment.y;
+        m
+    };
+    const CHUNK: usize = 8;
+    let none = Field {
+        potential: 0.0,
+        acceleration: Vec3::zeros(),
+    };
+    for chunk in nodes.chunks(CHUNK) {
+        // A chunk's fields first, then its sums: consecutive field evaluations (long chains
+        // of divisions and square roots) overlap in the processor.
+        let (mut fields, mut mirror_fields) = ([none; CHUNK], [none; CHUNK]);
+        for (field, n) in fields.iter_mut().zip(chunk) {
+            *field = source.field(&map.apply(&n.r));
+        }
         if mirror {
-            node.r.z = -z;
-            node.w.z = -wz;
-            node.moment.x = -moment.x;
-            node.moment.y = -moment.y;
-            add_node::<P, FAR>(&node, source, map, reference, &mut acc);
+            for (field, n) in mirror_fields.iter_mut().zip(chunk) {
+                *field = source.field(&map.apply(&Vec3::new(n.r.x, n.r.y, -n.r.z)));
+            }
+        }
+        for ((n, field), mirror_field) in chunk.iter().zip(&fields).zip(&mirror_fields) {
+            add_node::<FAR>(n, field, map, reference, &mut acc);
+            if mirror {
+                add_node::<FAR>(&mirrored(n), mirror_field, map, reference, &mut acc);
+            }
         }
     }
     for (o, v) in out.iter_mut().zip(acc) {
         *o += v;
     }
     if mirror {
-        2 * range.len()
+        2 * nodes.len()
     } else {
-        range.len()
+        nodes.len()
     }
 }
 
