@@ -444,16 +444,14 @@ impl<const N: usize> NestedCubature<N> {
         line: &mut L,
     ) -> usize
     where
-        L: FnMut(usize, Range<usize>, &mut [f64; N]) -> usize,
+        L: FnMut(usize, usize, &[usize], &mut [[f64; N]]) -> usize,
     {
         let mut spent = 0;
+        let ends = [p.count(i - 2), p.count(i - 1), p.count(i)];
         for k in lines {
-            let mut coarser = [0.0; N];
-            spent += line(k, 0..p.count(i - 2), &mut coarser);
-            let mut coarse = coarser;
-            spent += line(k, p.count(i - 2)..p.count(i - 1), &mut coarse);
-            let mut fine = coarse;
-            spent += line(k, p.count(i - 1)..p.count(i), &mut fine);
+            let mut sums = [[0.0; N]; 3];
+            spent += line(k, 0, &ends, &mut sums);
+            let [coarser, coarse, fine] = sums;
             self.lines[0].push(fine);
             self.lines[1].push(coarse);
             self.lines[2].push(coarser);
@@ -529,12 +527,30 @@ impl<const N: usize> NestedCubature<N> {
         E: FnMut(&[f64; N], &[f64; N]) -> f64,
         R: Fn(f64, f64) -> f64,
     {
+        let mut line = line;
         self.integrate_converted(
             rule,
             start,
             tolerance,
             max_evaluations,
-            line,
+            |k: usize, start: usize, ends: &[usize], outs: &mut [[f64; N]]| {
+                if let ([end], [out]) = (ends, &mut *outs) {
+                    return line(k, start..*end, out);
+                }
+                // The running sum continues from segment to segment, as the line would be
+                // summed in one pass.
+                let mut running = [0.0; N];
+                let mut spent = 0;
+                let mut from = start;
+                for (&end, out) in ends.iter().zip(outs) {
+                    spent += line(k, from..end, &mut running);
+                    for (o, &r) in out.iter_mut().zip(&running) {
+                        *o += r;
+                    }
+                    from = end;
+                }
+                spent
+            },
             |_: &[f64; N]| (),
             |a: &[f64; N], b: &[f64; N], _: &(), _: &()| norm(a, b),
             estimate_of,
@@ -549,6 +565,12 @@ impl<const N: usize> NestedCubature<N> {
     /// direction) and three after a doubling (two of the five are the last iteration's),
     /// instead of two per `norm` call, for a caller whose conversion costs more than the norm.
     /// Returns the estimate and the converted value.
+    ///
+    /// The integrand is asked for **nested line sums**: `line(k, start, ends, outs)` must add
+    /// to `outs[s]` the sum over periodic nodes `start..ends[s]` (`ends` increasing) of
+    /// `factors()[m]` times the integrand at (`periodic.nodes()[m]`, `across.nodes()[k]`), and
+    /// return the evaluations spent: a new line's three periodic levels come from one call, so
+    /// a caller can evaluate the whole line before summing.
     ///
     /// # Errors
     /// As [`Self::integrate`].
@@ -565,7 +587,7 @@ impl<const N: usize> NestedCubature<N> {
         estimate_of: R,
     ) -> Result<(NestedEstimate<N>, V), QuadratureError>
     where
-        L: FnMut(usize, Range<usize>, &mut [f64; N]) -> usize,
+        L: FnMut(usize, usize, &[usize], &mut [[f64; N]]) -> usize,
         C: FnMut(&[f64; N]) -> V,
         E: FnMut(&[f64; N], &[f64; N], &V, &V) -> f64,
         R: Fn(f64, f64) -> f64,
@@ -680,7 +702,7 @@ impl<const N: usize> NestedCubature<N> {
                 {
                     *cc = *c;
                     *c = *f;
-                    evaluations += line(k, range.clone(), f);
+                    evaluations += line(k, range.start, &[range.end], std::slice::from_mut(f));
                 }
                 i += 1;
             } else {

@@ -920,12 +920,17 @@ impl InteractionEngine {
                 start,
                 tolerance,
                 budget,
-                |k, range, out| {
-                    let nodes = geometry.line(&set, axes, k, range);
+                |k, start, ends: &[usize], outs: &mut [[Real; nested_rule::COMPONENTS]]| {
+                    let end = ends.last().copied().unwrap_or(start);
+                    let (nodes, fields) = geometry.line(&set, axes, k, start..end);
                     if p.far {
-                        ellipsoid_line::<_, true>(nodes, mirror, f, &p.map, reference, out)
+                        ellipsoid_line::<_, true>(
+                            nodes, start, ends, mirror, f, &p.map, reference, outs, fields,
+                        )
                     } else {
-                        ellipsoid_line::<_, false>(nodes, mirror, f, &p.map, reference, out)
+                        ellipsoid_line::<_, false>(
+                            nodes, start, ends, mirror, f, &p.map, reference, outs, fields,
+                        )
                     }
                 },
                 values_of,

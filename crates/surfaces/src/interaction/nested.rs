@@ -254,17 +254,20 @@ pub(crate) struct LineGeometry {
     lines: Vec<Vec<NodeGeometry>>,
     cached: usize,
     scratch: Vec<NodeGeometry>,
+    /// A line's fields (reused).
+    fields: Vec<Field>,
 }
 
 impl LineGeometry {
-    /// The geometry of nodes `range` of line `k` (computed now if not cached).
+    /// The geometry of nodes `range` of line `k` (computed now if not cached), and a buffer
+    /// for their fields.
     pub(crate) fn line(
         &mut self,
         set: &NestedRuleSet,
         axes: [Real; 3],
         k: usize,
         range: Range<usize>,
-    ) -> &[NodeGeometry] {
+    ) -> (&[NodeGeometry], &mut Vec<Field>) {
         if self.lines.len() <= k {
             self.lines.resize_with(k + 1, Vec::new);
         }
@@ -273,12 +276,12 @@ impl LineGeometry {
             if self.cached + (range.end - have) > MAX_CACHED_NODES {
                 self.scratch.clear();
                 line_geometry(set, axes, k, range, &mut self.scratch);
-                return &self.scratch;
+                return (&self.scratch, &mut self.fields);
             }
             line_geometry(set, axes, k, have..range.end, &mut self.lines[k]);
             self.cached += range.end - have;
         }
-        &self.lines[k][range]
+        (&self.lines[k][range], &mut self.fields)
     }
 }
 
@@ -318,20 +321,36 @@ impl GeometryCache {
     }
 }
 
-/// Adds to `out` the sum over `nodes` (a range of one height line, with, when `mirror`, their
-/// mirror images $-z$) of the integrand times the azimuth factor (the acceleration form of the
-/// force only with `FAR`), in the field of `source` (`reference` its potential at the
-/// centroid). Returns the evaluations spent.
+/// Adds to `outs[s]` the sum over the nodes `start..ends[s]` of one height line (`nodes` holds
+/// `start..` the last end; with `mirror`, also over their mirror images $-z$)
+/// of the integrand times the azimuth factor (the acceleration form of the force only with
+/// `FAR`), in the field of `source` (`reference` its potential at the centroid). The line's
+/// fields are evaluated first, into `fields`, then summed: consecutive field evaluations (long
+/// chains of divisions and square roots) overlap in the processor. Returns the evaluations
+/// spent.
+#[allow(clippy::too_many_arguments)]
 #[inline]
 pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
     nodes: &[NodeGeometry],
+    start: usize,
+    ends: &[usize],
     mirror: bool,
     source: &P,
     map: &FrameMap,
     reference: Real,
-    out: &mut [Real; COMPONENTS],
+    outs: &mut [[Real; COMPONENTS]],
+    fields: &mut Vec<Field>,
 ) -> usize {
-    let mut acc = [0.0; COMPONENTS];
+    fields.clear();
+    fields.extend(nodes.iter().map(|n| source.field(&map.apply(&n.r))));
+    if mirror {
+        fields.extend(
+            nodes
+                .iter()
+                .map(|n| source.field(&map.apply(&Vec3::new(n.r.x, n.r.y, -n.r.z)))),
+        );
+    }
+    let (upper, lower) = fields.split_at(nodes.len());
     // The mirror image (rx, ry, −z) with W = (wx, wy, −wz): x × W = (−mx, −my, mz), of the
     // same length; every other constant is shared.
     let mirrored = |n: &NodeGeometry| {
@@ -342,32 +361,23 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
         m.moment.y = -n.moment.y;
         m
     };
-    const CHUNK: usize = 8;
-    let none = Field {
-        potential: 0.0,
-        acceleration: Vec3::zeros(),
-    };
-    for chunk in nodes.chunks(CHUNK) {
-        // A chunk's fields first, then its sums: consecutive field evaluations (long chains
-        // of divisions and square roots) overlap in the processor.
-        let (mut fields, mut mirror_fields) = ([none; CHUNK], [none; CHUNK]);
-        for (field, n) in fields.iter_mut().zip(chunk) {
-            *field = source.field(&map.apply(&n.r));
-        }
-        if mirror {
-            for (field, n) in mirror_fields.iter_mut().zip(chunk) {
-                *field = source.field(&map.apply(&Vec3::new(n.r.x, n.r.y, -n.r.z)));
-            }
-        }
-        for ((n, field), mirror_field) in chunk.iter().zip(&fields).zip(&mirror_fields) {
-            add_node::<FAR>(n, field, map, reference, &mut acc);
+    // Each segment summed on its own, then added to the running prefix.
+    let mut prefix = [0.0; COMPONENTS];
+    let mut from = 0;
+    for (&end, out) in ends.iter().zip(outs) {
+        let to = end - start;
+        let mut acc = [0.0; COMPONENTS];
+        for (i, n) in nodes[from..to].iter().enumerate() {
+            add_node::<FAR>(n, &upper[from + i], map, reference, &mut acc);
             if mirror {
-                add_node::<FAR>(&mirrored(n), mirror_field, map, reference, &mut acc);
+                add_node::<FAR>(&mirrored(n), &lower[from + i], map, reference, &mut acc);
             }
         }
-    }
-    for (o, v) in out.iter_mut().zip(acc) {
-        *o += v;
+        for ((o, p), v) in out.iter_mut().zip(prefix.iter_mut()).zip(acc) {
+            *p += v;
+            *o += *p;
+        }
+        from = to;
     }
     if mirror {
         2 * nodes.len()
