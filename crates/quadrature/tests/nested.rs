@@ -214,3 +214,77 @@ fn cubature_estimate_bounds_the_true_error() {
     }
     println!("worst true error / estimate: {worst:.3}");
 }
+
+/// `integrate_converted` asks for nested line sums (`start..ends[s]` into `outs[s]`) and a
+/// conversion: a caller that sums each line in one pass and converts by scaling gets the same
+/// value, estimate and count as `integrate_with` on the one-range closure, and the converted
+/// value is the conversion of the value.
+#[test]
+fn converted_integration_with_nested_line_sums_matches_the_plain_one() {
+    let eps = 0.05;
+    let rule = NestedTensorRule {
+        periodic: NestedTrapezoid::new(6, 8, 0.0, TAU, false).unwrap(),
+        across: NestedFejer::new(3, 8, Interval::new(0.0, 1.0).unwrap()).unwrap(),
+    };
+    let term = |m: usize, k: usize| {
+        let (x, phi) = (rule.across.nodes()[k], rule.periodic.nodes()[m]);
+        rule.periodic.factors()[m] / (1.0 + eps - x * phi.cos())
+    };
+    let start = NestedLevels {
+        periodic: 2,
+        across: 2,
+    };
+    let norm = |a: &[f64; 1], b: &[f64; 1]| (a[0] - b[0]).abs() / a[0].abs();
+    let plain = NestedCubature::<1>::new()
+        .integrate_with(
+            &rule,
+            start,
+            1e-10,
+            1_000_000,
+            |k, range: Range<usize>, out: &mut [f64; 1]| {
+                for m in range.clone() {
+                    out[0] += term(m, k);
+                }
+                range.len()
+            },
+            norm,
+            rate_estimate,
+        )
+        .unwrap();
+    let mut calls = 0;
+    let (converted, scaled) = NestedCubature::<1>::new()
+        .integrate_converted(
+            &rule,
+            start,
+            1e-10,
+            1_000_000,
+            |k, start, ends: &[usize], outs: &mut [[f64; 1]]| {
+                calls += 1;
+                let mut running = 0.0;
+                let mut from = start;
+                for (&end, out) in ends.iter().zip(outs) {
+                    for m in from..end {
+                        running += term(m, k);
+                    }
+                    out[0] += running;
+                    from = end;
+                }
+                ends.last().map_or(0, |&end| end - start)
+            },
+            |q: &[f64; 1]| 2.0 * q[0],
+            |a: &[f64; 1], b: &[f64; 1], ca: &f64, cb: &f64| {
+                assert_eq!((*ca, *cb), (2.0 * a[0], 2.0 * b[0]));
+                norm(a, b)
+            },
+            rate_estimate,
+        )
+        .unwrap();
+    assert!(plain.converged && converted.converged);
+    assert_eq!(converted.value, plain.value);
+    assert_eq!(converted.error_estimate, plain.error_estimate);
+    assert_eq!(converted.evaluations, plain.evaluations);
+    assert_eq!(scaled, 2.0 * plain.value[0]);
+    // One call per new line, and one per line and doubling of the periodic level.
+    let (p, a) = (plain.levels.periodic, plain.levels.across);
+    assert!(calls >= rule.across.count(a) && calls <= rule.across.count(a) * (1 + p));
+}
