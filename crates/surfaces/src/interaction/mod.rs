@@ -102,14 +102,14 @@
 //! below $4\times10^{-15}$. A single uncertified table reaching $10^{-12}$ costs about 6 µs at
 //! separation 3: the certificate (a second, finer table) is most of the price. The adaptive
 //! rule costs 25–90 times the ladder at $10^{-12}$; the nested doubling rule
-//! ([`MethodChoice::Nested`]) certifies $10^{-12}$ at 1.9–2.7 times the time of the cheapest
+//! ([`MethodChoice::Nested`]) certifies $10^{-12}$ at 1.8–2.7 times the time of the cheapest
 //! single table that is as accurate (uncertified), at all five separations.
 //! [`InteractionEngine::force`] (the force alone, for integrator stages) saves 15–17 % (13.6
 //! against 16.1 µs at separation 3). The node loop spends about 70 ns per node, three quarters
-//! of it in the spheroid's field; through `dyn Potential` the same loop costs 32–39 % more
+//! of it in the spheroid's field; through `dyn Potential` the same loop costs 26–39 % more
 //! (example `work_precision`, last lines). Machines of this kind differ: on a slower one
 //! (2.0 GHz, the paper's force at separation 3 taking 10.95 ms in Python against 4.3 ms) the
-//! ladder costs 66 µs at 2.1, 27.6 µs at 3 and 14.4 µs at 30.
+//! ladder costs 55–60 µs at 2.1, 21.6–23.4 µs at 3 and 12–13 µs at 30.
 //!
 //! # Overlap
 //!
