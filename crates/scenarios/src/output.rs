@@ -3,7 +3,8 @@
 //! Everything is written into a hidden sibling folder `.NAME.partial-PID` and renamed to its
 //! final name only after the last file is closed (a rename within one directory is atomic on
 //! POSIX file systems). A run that fails removes its partial folder; one that is killed leaves
-//! only the hidden `.partial` folder, never a folder with the final name.
+//! only the hidden `.partial` folder, never a folder with the final name, and the next run to
+//! the same name removes it (when its process is gone).
 //!
 //! Files of a run folder:
 //! - `trajectory.csv`: header row, then one row per written sample: `t`, `xa, ya, za`,
@@ -188,8 +189,37 @@ pub struct Staging {
     committed: bool,
 }
 
+/// Removes the partial folders `.NAME.partial-PID` in `parent` left by runs that were killed
+/// (Ctrl-C, a crash): those whose process no longer exists. Where processes cannot be looked up
+/// (no `/proc`), or a folder cannot be removed, nothing is done: a run in progress is never
+/// touched, and a leftover is only clutter.
+fn remove_stale_partials(parent: &Path, name: &str) {
+    let proc = Path::new("/proc");
+    if !proc.join("self").exists() {
+        return;
+    }
+    let prefix = format!(".{name}.partial-");
+    let Ok(entries) = fs::read_dir(parent) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name();
+        let Some(pid) = file_name
+            .to_str()
+            .and_then(|n| n.strip_prefix(&prefix))
+            .and_then(|pid| pid.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        if pid != std::process::id() && !proc.join(pid.to_string()).exists() {
+            let _ = fs::remove_dir_all(entry.path());
+        }
+    }
+}
+
 impl Staging {
-    /// Creates the temporary sibling of `target`.
+    /// Creates the temporary sibling of `target`, after removing the partial folders of the
+    /// same name left by killed runs.
     ///
     /// # Errors
     /// I/O errors, with the path.
@@ -208,6 +238,7 @@ impl Staging {
                 parent.display()
             ));
         }
+        remove_stale_partials(&parent, &name);
         let temporary = parent.join(format!(".{name}.partial-{}", std::process::id()));
         if temporary.exists() {
             fs::remove_dir_all(&temporary)
@@ -263,5 +294,37 @@ impl Drop for Staging {
         if !self.committed {
             let _ = fs::remove_dir_all(&self.temporary);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A killed run's partial folder (its process gone) is removed by the next run to the same
+    /// name; a live process's (PID 1) and other names' are kept.
+    #[test]
+    fn stale_partial_folders_are_removed_live_ones_kept() {
+        if !Path::new("/proc/self").exists() {
+            return;
+        }
+        let root = std::env::temp_dir().join(format!("surfgrav-staging-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&root);
+        fs::create_dir_all(&root).unwrap();
+        // PIDs stay below 2^22 on Linux: this one belongs to no process.
+        let stale = root.join(".run.partial-4999999");
+        let live = root.join(".run.partial-1");
+        let other = root.join(".other.partial-4999999");
+        for d in [&stale, &live, &other] {
+            fs::create_dir(d).unwrap();
+            fs::write(d.join("trajectory.csv"), "t\n").unwrap();
+        }
+        let staging = Staging::new(&root.join("run")).unwrap();
+        assert!(!stale.exists());
+        assert!(live.exists() && other.exists());
+        assert!(staging.path().exists());
+        staging.commit().unwrap();
+        assert!(root.join("run").is_dir());
+        fs::remove_dir_all(&root).unwrap();
     }
 }
