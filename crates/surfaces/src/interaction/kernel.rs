@@ -300,6 +300,30 @@ impl std::ops::Deref for SolidTable {
     }
 }
 
+/// The source's fields at a block's points (`ACCELERATION`: with the acceleration, otherwise
+/// the potential alone), evaluated before the block's sums: consecutive field evaluations
+/// (long chains of divisions and square roots, independent of each other) then overlap in the
+/// processor (measured 8 % faster per call than evaluating each node's field inside its sums).
+#[inline(always)]
+fn block_fields<P: Potential + ?Sized, const ACCELERATION: bool>(
+    points: &[Vec3],
+    source: &P,
+    map: &FrameMap,
+) -> [Field; BLOCK] {
+    let mut fields = [Field {
+        potential: 0.0,
+        acceleration: Vec3::zeros(),
+    }; BLOCK];
+    for (field, r) in fields.iter_mut().zip(points) {
+        if ACCELERATION {
+            *field = source.field(&map.apply(r));
+        } else {
+            field.potential = source.potential(&map.apply(r));
+        }
+    }
+    fields
+}
+
 /// [`solid_sums`] over a [`SolidTable`], with the per-node constants read instead of
 /// recomputed (the same sums, term by term).
 #[inline(never)]
@@ -328,16 +352,7 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized, const FAR: bool>(
         let mut g = Vec3::zeros();
         let mut e = 0.0;
         let mut af = Vec3::zeros();
-        // The block's fields first, then its sums: consecutive field evaluations (long chains
-        // of divisions and square roots, independent of each other) overlap in the processor
-        // (measured 8 % faster per call than evaluating each node's field inside its sums).
-        let mut fields = [Field {
-            potential: 0.0,
-            acceleration: Vec3::zeros(),
-        }; BLOCK];
-        for (field, r) in fields.iter_mut().zip(block_points) {
-            *field = source.field(&map.apply(r));
-        }
+        let fields = block_fields::<P, true>(block_points, source, map);
         for ((w, k), field) in block_weights.iter().zip(block_constants).zip(fields) {
             let phi = field.potential;
             let a = map.back(&field.acceleration);
@@ -399,18 +414,7 @@ pub(crate) fn solid_force_sums<P: Potential + ?Sized, const FAR: bool>(
     {
         let mut f = Vec3::zeros();
         let mut af = Vec3::zeros();
-        // The block's fields first, then its sums (see `solid_table_sums`).
-        let mut fields = [Field {
-            potential: 0.0,
-            acceleration: Vec3::zeros(),
-        }; BLOCK];
-        for (field, r) in fields.iter_mut().zip(block_points) {
-            if FAR {
-                *field = source.field(&map.apply(r));
-            } else {
-                field.potential = source.potential(&map.apply(r));
-            }
-        }
+        let fields = block_fields::<P, FAR>(block_points, source, map);
         for ((w, k), field) in block_weights.iter().zip(block_constants).zip(fields) {
             let phi = field.potential;
             if FAR {
