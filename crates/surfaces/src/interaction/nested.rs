@@ -241,7 +241,7 @@ fn line_geometry(
 
 /// Nodes cached per geometry (about 110 bytes each): beyond, a line's geometry is computed
 /// for the call only.
-pub(crate) const MAX_CACHED_NODES: usize = 1 << 16;
+const MAX_CACHED_NODES: usize = 1 << 16;
 
 /// Geometries kept (an engine alternates between a pair's two bodies, or a few pairs).
 const CACHED_GEOMETRIES: usize = 4;
@@ -341,16 +341,6 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
     outs: &mut [[Real; COMPONENTS]],
     fields: &mut Vec<Field>,
 ) -> usize {
-    fields.clear();
-    fields.extend(nodes.iter().map(|n| source.field(&map.apply(&n.r))));
-    if mirror {
-        fields.extend(
-            nodes
-                .iter()
-                .map(|n| source.field(&map.apply(&Vec3::new(n.r.x, n.r.y, -n.r.z)))),
-        );
-    }
-    let (upper, lower) = fields.split_at(nodes.len());
     // The mirror image (rx, ry, −z) with W = (wx, wy, −wz): x × W = (−mx, −my, mz), of the
     // same length; every other constant is shared.
     let mirrored = |n: &NodeGeometry| {
@@ -361,6 +351,16 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
         m.moment.y = -n.moment.y;
         m
     };
+    fields.clear();
+    fields.extend(nodes.iter().map(|n| source.field(&map.apply(&n.r))));
+    if mirror {
+        fields.extend(
+            nodes
+                .iter()
+                .map(|n| source.field(&map.apply(&mirrored(n).r))),
+        );
+    }
+    let (upper, lower) = fields.split_at(nodes.len());
     // Each segment summed on its own, then added to the running prefix.
     let mut prefix = [0.0; COMPONENTS];
     let mut from = 0;
