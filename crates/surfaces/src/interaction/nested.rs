@@ -151,7 +151,7 @@ pub(crate) const COMPONENTS: usize = 18;
 /// What one node of a line adds (see [`COMPONENTS`]); everything but the field is computed
 /// once for a node and its mirror image, which share $\tfrac12|\mathbf x|^2$, $\mathbf x\cdot\mathbf W$,
 /// $|\mathbf W|$, $|\mathbf x\times\mathbf W|$ and $|\mathbf x|$.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct NodeGeometry {
     r: Vec3,
     w: Vec3,
@@ -239,9 +239,10 @@ fn line_geometry(
     }));
 }
 
-/// Nodes cached per geometry (about 110 bytes each): beyond, a line's geometry is computed
-/// for the call only.
-const MAX_CACHED_NODES: usize = 1 << 16;
+/// Nodes cached per geometry (112 bytes each: 1.8 MB, at most 7 MB for the
+/// [`CACHED_GEOMETRIES`]; the founding paper's pair needs at most 775): beyond, a line's
+/// geometry is computed for the call only.
+const MAX_CACHED_NODES: usize = 1 << 14;
 
 /// Geometries kept (an engine alternates between a pair's two bodies, or a few pairs).
 const CACHED_GEOMETRIES: usize = 4;
@@ -401,5 +402,46 @@ pub(crate) fn solid_sums_from(v: &[Real; COMPONENTS], far: bool) -> SolidSums {
         acceleration_flux: Vec3::new(v[13], v[14], v[15]) * far,
         acceleration_flux_magnitude: v[16] * far,
         potential_magnitude: v[17],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A line's geometry is the same from the cache and, past the cache's cap, computed for
+    /// the call; its points lie on the ellipsoid and the area vectors are outward normals.
+    #[test]
+    fn cached_and_uncached_line_geometry_agree() {
+        let set = rule_set(4, 2, false, 3).unwrap();
+        let axes = [1.0, 0.8, 0.3];
+        let mut cached = LineGeometry::default();
+        let mut full = LineGeometry {
+            cached: MAX_CACHED_NODES,
+            ..LineGeometry::default()
+        };
+        for k in 0..set.rule.across.count(2) {
+            for range in [0..4, 4..9, 0..17] {
+                let (a, _) = cached.line(&set, axes, k, range.clone());
+                let a = a.to_vec();
+                let (b, _) = full.line(&set, axes, k, range.clone());
+                assert_eq!(a, b.to_vec(), "line {k}, nodes {range:?}");
+                for n in &a {
+                    let on = (n.r.x / axes[0]).powi(2)
+                        + (n.r.y / axes[1]).powi(2)
+                        + (n.r.z / axes[2]).powi(2);
+                    assert!((on - 1.0).abs() < 1e-14, "{on}");
+                    // The surface normal at r is (x/a², y/b², z/c²).
+                    let normal = Vec3::new(
+                        n.r.x / (axes[0] * axes[0]),
+                        n.r.y / (axes[1] * axes[1]),
+                        n.r.z / (axes[2] * axes[2]),
+                    );
+                    assert!(n.w.cross(&normal).norm() <= 1e-14 * n.w.norm() * normal.norm());
+                    assert!(n.w.dot(&normal) > 0.0);
+                }
+            }
+        }
+        assert!(full.lines.iter().all(Vec::is_empty));
     }
 }
