@@ -518,7 +518,7 @@ impl<const N: usize> NestedCubature<N> {
         start: NestedLevels,
         tolerance: f64,
         max_evaluations: usize,
-        line: L,
+        mut line: L,
         mut norm: E,
         estimate_of: R,
     ) -> Result<NestedEstimate<N>, QuadratureError>
@@ -527,7 +527,6 @@ impl<const N: usize> NestedCubature<N> {
         E: FnMut(&[f64; N], &[f64; N]) -> f64,
         R: Fn(f64, f64) -> f64,
     {
-        let mut line = line;
         self.integrate_converted(
             rule,
             start,
