@@ -176,30 +176,45 @@ fn potential_is_continuous_across_the_rim() {
     }
 }
 
-/// The rim itself: finite, never NaN; the field there is the one at distance ε·R (documented).
+/// The rim itself: the in-plane attraction is infinite there (it diverges logarithmically), so
+/// it is returned as an infinity toward the axis, never a finite stand-in (it was once
+/// −2Gσ(ln(8/ε) − 2) ≈ −23.0 for R = M = G = 1) and never NaN; Φ stays finite and continuous
+/// (−4GσR). Just off the rim, on both sides, the field follows the logarithmic asymptote.
 #[test]
-fn rim_is_finite_and_equals_the_field_at_epsilon() {
-    // Unit radius, so that the point ε·R outside the rim is a double.
+fn rim_attraction_is_infinite_and_the_potential_finite() {
+    // Unit radius, so that points d·R off the rim are doubles with exact offsets.
     let unit = UniformDisk::new(1.0, MASS).unwrap();
     let rim = unit.field(&Vec3::new(1.0, 0.0, 0.0));
-    let beside = unit.field(&Vec3::new(1.0 + f64::EPSILON, 0.0, 0.0));
-    assert!(rim.potential.is_finite() && rim.acceleration.iter().all(|c| c.is_finite()));
-    assert!(((rim.potential - beside.potential) / rim.potential).abs() < POTENTIAL_REL);
-    assert!(
-        (rim.acceleration - beside.acceleration).norm() / rim.acceleration.norm()
-            < ACCELERATION_REL
-    );
-    // a_ρ = −2Gσ(ln(8/d) − 2)(1 + O(d)) at a distance d·R from the rim, in the plane.
-    for d in [1e-12, 1e-9, 1e-6] {
-        let x = 1.0 + d;
-        let d = x - 1.0; // the offset of the double actually used (exact)
-        let a = unit.acceleration(&Vec3::new(x, 0.0, 0.0)).x;
-        let asymptote = -2.0 * (MASS / PI) * ((8.0 / d).ln() - 2.0);
-        assert!(
-            ((a - asymptote) / asymptote).abs() < 10.0 * d + POTENTIAL_REL,
-            "d = {d}: {a} vs {asymptote}"
-        );
+    assert_eq!(rim.acceleration.x, f64::NEG_INFINITY);
+    assert_eq!((rim.acceleration.y, rim.acceleration.z), (0.0, 0.0));
+    let exact_rim_potential = -4.0 * (MASS / PI);
+    assert!(((rim.potential - exact_rim_potential) / exact_rim_potential).abs() < POTENTIAL_REL);
+    // Other points of the rim circle: infinite inward along each nonzero coordinate, no NaN.
+    let opposite = unit.field(&Vec3::new(-1.0, 0.0, 0.0));
+    assert_eq!(opposite.acceleration, Vec3::new(f64::INFINITY, 0.0, 0.0));
+    let side = unit.field(&Vec3::new(0.0, 1.0, 0.0));
+    assert_eq!(side.acceleration, Vec3::new(0.0, f64::NEG_INFINITY, 0.0));
+    // Off the rim, inside and outside, in the plane: a_ρ = −2Gσ(ln(8/d) − 2)(1 + O(d ln d)).
+    for d in [1e-12, 1e-10, 1e-9, 1e-6] {
+        for side in [1.0f64, -1.0] {
+            let x: f64 = 1.0 + side * d;
+            let d = (x - 1.0).abs(); // the offset of the double actually used (exact)
+            let a = unit.acceleration(&Vec3::new(x, 0.0, 0.0)).x;
+            assert!(a.is_finite());
+            let asymptote = -2.0 * (MASS / PI) * ((8.0 / d).ln() - 2.0);
+            assert!(
+                ((a - asymptote) / asymptote).abs() < 10.0 * d + POTENTIAL_REL,
+                "d = {side}·{d}: {a} vs {asymptote}"
+            );
+        }
     }
+    // The values quoted when the rim was reported (R = M = G = 1, inside): −8.85 at 1 − 1e-6,
+    // −14.71 at 1 − 1e-10, to the digits quoted.
+    let one = UniformDisk::new(1.0, 1.0).unwrap();
+    let a6 = one.acceleration(&Vec3::new(1.0 - 1e-6, 0.0, 0.0)).x;
+    let a10 = one.acceleration(&Vec3::new(1.0 - 1e-10, 0.0, 0.0)).x;
+    assert!((a6 + 8.85).abs() < 5e-3, "{a6}");
+    assert!((a10 + 14.71).abs() < 5e-3, "{a10}");
     assert_eq!(unit.region(&Vec3::new(1.0, 0.0, 0.0)), Region::OnSurface);
     assert_eq!(
         unit.region(&Vec3::new(1.0 + f64::EPSILON, 0.0, 0.0)),
