@@ -67,6 +67,13 @@ pub trait Potential: std::fmt::Debug + Send + Sync {
         }
     }
 
+    /// The inertia tensor about the centroid in the body frame ([`crate::inertia`]); `None` for
+    /// a body that cannot rotate (a point mass) or whose mass distribution is unknown (the
+    /// default: a user's potential supplies its own to be integrated with rotation).
+    fn inertia(&self) -> Option<crate::InertiaTensor> {
+        None
+    }
+
     /// G times the mass, the gravitational parameter μ.
     fn gravitational_parameter(&self) -> Real {
         self.gravitational_constant() * self.mass()

@@ -88,6 +88,11 @@ impl Sphere {
 }
 
 impl Potential for Sphere {
+    fn inertia(&self) -> Option<crate::InertiaTensor> {
+        let r = self.radius();
+        crate::InertiaTensor::solid_ellipsoid(self.mass(), r, r, r).ok()
+    }
+
     fn mass(&self) -> Real {
         self.mass
     }

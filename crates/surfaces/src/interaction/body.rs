@@ -8,7 +8,9 @@ use crate::{Ellipsoid, Lamina, Real, Surface, Vec3};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use surfgrav_potentials as potentials;
-use surfgrav_potentials::{PointMass, Potential, Sphere, Spheroid, UniformDisk};
+use surfgrav_potentials::{
+    InertiaError, InertiaTensor, Mat3, PointMass, Potential, Sphere, Spheroid, UniformDisk,
+};
 
 /// The geometry of a body for the engine: what can be integrated over, and what its overlap
 /// test uses. Body frame: centroid at the origin, an ellipsoid's $c$ axis and a disk's normal
@@ -93,6 +95,7 @@ pub struct Body {
     pub(crate) symmetry: FieldSymmetry,
     pub(crate) density: Real,
     pub(crate) bounding_radius: Real,
+    inertia: Option<InertiaTensor>,
     tables: Mutex<HashMap<TableKey, NodeTable>>,
 }
 
@@ -103,6 +106,7 @@ impl std::fmt::Debug for Body {
             .field("shape", &self.shape)
             .field("density", &self.density)
             .field("bounding_radius", &self.bounding_radius)
+            .field("inertia", &self.inertia)
             .field("cached_tables", &self.cached_tables())
             .finish()
     }
@@ -117,6 +121,7 @@ impl Clone for Body {
             symmetry: self.symmetry,
             density: self.density,
             bounding_radius: self.bounding_radius,
+            inertia: self.inertia,
             tables: Mutex::new(tables),
         }
     }
@@ -132,9 +137,9 @@ impl Body {
         shape: BodyShape,
         symmetry: FieldSymmetry,
     ) -> Result<Self, InteractionError> {
-        let (mass, potential_radius) = {
+        let (mass, potential_radius, inertia) = {
             let p = field_ref(&field);
-            (p.mass(), p.bounding_radius())
+            (p.mass(), p.bounding_radius(), p.inertia())
         };
         let (density, shape_radius) = match &shape {
             BodyShape::Point | BodyShape::FieldOnly => (Real::NAN, 0.0),
@@ -160,6 +165,7 @@ impl Body {
             symmetry,
             density,
             bounding_radius: potential_radius.max(shape_radius),
+            inertia,
             tables: Mutex::new(HashMap::new()),
         })
     }
@@ -172,6 +178,7 @@ impl Body {
             symmetry: FieldSymmetry::Spherical,
             density: Real::NAN,
             bounding_radius: 0.0,
+            inertia: None,
             tables: Mutex::new(HashMap::new()),
         }
     }
@@ -227,6 +234,28 @@ impl Body {
         shape: BodyShape,
     ) -> Result<Self, InteractionError> {
         Self::assemble(SourceField::Custom(potential), shape, FieldSymmetry::None)
+    }
+
+    /// The same body with the inertia tensor `tensor` (body frame, about the centroid; units
+    /// mass · length²), for a user's body whose potential does not give one
+    /// ([`Potential::inertia`]) or to override it. Rotational dynamics needs it.
+    ///
+    /// # Errors
+    /// A tensor that is not a physical inertia tensor ([`InertiaTensor::new`]); a point mass,
+    /// which cannot rotate.
+    pub fn with_inertia(mut self, tensor: Mat3) -> Result<Self, InertiaError> {
+        if matches!(self.shape, BodyShape::Point) {
+            return Err(InertiaError::PointMass);
+        }
+        self.inertia = Some(InertiaTensor::new(tensor)?);
+        Ok(self)
+    }
+
+    /// The inertia tensor about the centroid in the body frame: the closed form of a built-in
+    /// body, the one given by [`Body::with_inertia`] or by a custom potential, `None` for a point
+    /// mass (which cannot rotate) and a custom body that gave none.
+    pub fn inertia(&self) -> Option<&InertiaTensor> {
+        self.inertia.as_ref()
     }
 
     /// The body's field.
