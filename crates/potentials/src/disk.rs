@@ -310,6 +310,10 @@ impl UniformDisk {
 }
 
 impl Potential for UniformDisk {
+    fn inertia(&self) -> Option<crate::InertiaTensor> {
+        crate::InertiaTensor::uniform_disk(self.mass(), self.radius()).ok()
+    }
+
     fn mass(&self) -> Real {
         self.mass
     }
