@@ -1,11 +1,11 @@
 //! Conservation diagnostics: total energy, angular momentum and the statistics of their per-step
 //! changes (the founding paper's Table 2).
 //!
-//! - Energy $E = T + V$ with $T = \tfrac12 m_A |\dot{\mathbf R}_A|^2 + \tfrac12 m_B |\dot{\mathbf R}_B|^2$
-//!   (translational; the spins are not integrated in this version) and $V$ the model's mutual
-//!   potential energy.
-//! - Angular momentum about the origin
-//!   $\mathbf J = m_A \mathbf R_A \times \dot{\mathbf R}_A + m_B \mathbf R_B \times \dot{\mathbf R}_B$.
+//! - Energy $E = T + V$ with $T = \sum_k \tfrac12 m_k |\dot{\mathbf R}_k|^2 + \tfrac12\boldsymbol\omega_k\cdot\mathsf I_k\boldsymbol\omega_k$
+//!   (translation and spin; a body without an inertia tensor has no spin energy) and $V$ the
+//!   model's mutual potential energy.
+//! - Total angular momentum about the origin
+//!   $\mathbf J = \sum_k m_k \mathbf R_k \times \dot{\mathbf R}_k + \mathsf Q_k\mathsf I_k\mathsf Q_k^{-1}\boldsymbol\omega_k$.
 //! - Per-step changes $\Delta E_k = E_k - E_{k-1}$ and $\Delta J_k = |\mathbf J_k| - |\mathbf J_{k-1}|$
 //!   between consecutive samples; their mean, sample standard deviation $\sigma$ (divisor $N-1$),
 //!   standard error $\sigma/\sqrt N$ and the slope of the least-squares line of the change against
@@ -22,8 +22,18 @@ use surfgrav_potentials::{Real, Vec3};
 
 /// Translational kinetic energy $T$.
 pub fn kinetic_energy(model: &dyn InteractionModel, state: &TwoBodyState) -> Real {
+    let spin = |inertia: Option<surfgrav_potentials::InertiaTensor>, body: &crate::BodyState| {
+        inertia.map_or(0.0, |i| {
+            let w = body
+                .orientation
+                .inverse_transform_vector(&body.angular_velocity);
+            0.5 * w.dot(&i.angular_momentum(&w))
+        })
+    };
     0.5 * model.mass_a() * state.body_a.velocity.norm_squared()
         + 0.5 * model.mass_b() * state.body_b.velocity.norm_squared()
+        + spin(model.inertia_a(), &state.body_a)
+        + spin(model.inertia_b(), &state.body_b)
 }
 
 /// Total energy $E = T + V$.
@@ -35,10 +45,30 @@ pub fn total_energy(
     Ok(kinetic_energy(model, state) + potential)
 }
 
-/// Orbital angular momentum about the origin $\mathbf J$.
+/// Spin angular momentum of one body about its centroid, world frame:
+/// $\mathsf Q\,\mathsf I\,\mathsf Q^{-1}\boldsymbol\omega$ (zero without an inertia tensor).
+pub fn spin_angular_momentum(
+    inertia: Option<surfgrav_potentials::InertiaTensor>,
+    body: &crate::BodyState,
+) -> Vec3 {
+    inertia.map_or_else(Vec3::zeros, |i| {
+        body.orientation
+            * i.angular_momentum(
+                &body
+                    .orientation
+                    .inverse_transform_vector(&body.angular_velocity),
+            )
+    })
+}
+
+/// Total angular momentum about the origin, orbital and spin:
+/// $\mathbf J = \sum_k m_k\mathbf R_k\times\dot{\mathbf R}_k + \mathsf Q_k\mathsf I_k\boldsymbol\omega_k$
+/// (the spins count for bodies whose model gives an inertia tensor).
 pub fn angular_momentum(model: &dyn InteractionModel, state: &TwoBodyState) -> Vec3 {
     state.body_a.position.cross(&state.body_a.velocity) * model.mass_a()
         + state.body_b.position.cross(&state.body_b.velocity) * model.mass_b()
+        + spin_angular_momentum(model.inertia_a(), &state.body_a)
+        + spin_angular_momentum(model.inertia_b(), &state.body_b)
 }
 
 /// Neumaier's compensated sum.

@@ -52,13 +52,13 @@
 //! separation.
 
 use crate::interpolant::{reachable_separations, InterpolantError, InterpolatedCentralPair};
-use crate::model::{InteractionError, InteractionModel};
+use crate::model::{InteractionError, InteractionModel, MotionPath, Wrench};
 use crate::state::TwoBodyState;
 use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
-use surfgrav_potentials::{Pose, Real, Vec3};
+use surfgrav_potentials::{InertiaTensor, Pose, Real, Vec3};
 use surfgrav_surfaces::interaction::{
     Body, BodyShape, Interaction, InteractionEngine, InteractionError as EngineError,
     InteractionOptions,
@@ -183,7 +183,13 @@ pub struct EngineModel {
     body_b: Body,
     engine: Mutex<InteractionEngine>,
     calls: AtomicUsize,
+    always_rotate: bool,
 }
+
+/// Why the translation path holds for two spherically symmetric bodies.
+const SPHERICAL_REASON: &str = "spherically symmetric bodies (points, spheres): no torques";
+/// Why the translation path holds for coaxial axisymmetric bodies.
+const COAXIAL_REASON: &str = "axisymmetric bodies with a common axis, spinning about it (or not at all), moving in their common equatorial plane: the torques vanish along the whole motion";
 
 impl EngineModel {
     /// The pair of `body_a` and `body_b`, evaluated with an engine built from `options`
@@ -207,7 +213,43 @@ impl EngineModel {
             body_b,
             engine: Mutex::new(InteractionEngine::new(options)?),
             calls: AtomicUsize::new(0),
+            always_rotate: false,
         })
+    }
+
+    /// The same model, integrating rotation even where a symmetry makes the torques vanish
+    /// (to compare the two paths, or to let numerical torques act).
+    pub fn always_rotating(mut self) -> Self {
+        self.always_rotate = true;
+        self
+    }
+
+    /// Why the motion from `initial` keeps every torque at zero, if it does: both bodies
+    /// spherically symmetric; or every body spherically symmetric or axisymmetric with parallel
+    /// axes, the relative position and velocity in the common equatorial plane, and each
+    /// axisymmetric body spinning about the common axis or not at all (then the motion stays in
+    /// that plane and every body keeps its symmetry relative to the other).
+    pub fn symmetric_motion(&self, initial: &TwoBodyState) -> Option<&'static str> {
+        let (pose_a, pose_b) = (initial.body_a.pose(), initial.body_b.pose());
+        let axis = self.common_axis(&pose_a, &pose_b)?;
+        let Some(k) = axis else {
+            return Some(SPHERICAL_REASON);
+        };
+        let in_plane = |v: &Vec3| cosine(&k, v) <= ALIGNMENT_SINE;
+        if !(in_plane(&initial.relative_position()) && in_plane(&initial.relative_velocity())) {
+            return None;
+        }
+        for (body, state) in [
+            (&self.body_a, &initial.body_a),
+            (&self.body_b, &initial.body_b),
+        ] {
+            if matches!(symmetry(body), Symmetry::Axial(_))
+                && sine(&k, &state.angular_velocity) > ALIGNMENT_SINE
+            {
+                return None;
+            }
+        }
+        Some(COAXIAL_REASON)
     }
 
     /// Body A.
@@ -343,6 +385,34 @@ impl InteractionModel for EngineModel {
     fn potential_energy(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Real, InteractionError> {
         Ok(self.evaluate(pose_a, pose_b)?.potential_energy)
     }
+    fn inertia_a(&self) -> Option<InertiaTensor> {
+        self.body_a.inertia().copied()
+    }
+    fn inertia_b(&self) -> Option<InertiaTensor> {
+        self.body_b.inertia().copied()
+    }
+    fn wrench(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Wrench, InteractionError> {
+        let i = self.evaluate(pose_a, pose_b)?;
+        Ok(Wrench {
+            force_on_a: i.force_on_a,
+            torque_on_a: i.torque_on_a,
+            torque_on_b: i.torque_on_b,
+        })
+    }
+    fn motion_path(&self, initial: &TwoBodyState) -> MotionPath {
+        if self.always_rotate {
+            return MotionPath::Rotation("rotation requested for every scene");
+        }
+        if self.body_a.inertia().is_none() && self.body_b.inertia().is_none() {
+            return MotionPath::Translation("no body can rotate");
+        }
+        match self.symmetric_motion(initial) {
+            Some(reason) => MotionPath::Translation(reason),
+            None => MotionPath::Rotation(
+                "no symmetry keeps the torques at zero along the motion (a triaxial body, axes not parallel, motion out of the common equatorial plane, or a spin off the symmetry axis)",
+            ),
+        }
+    }
     fn torques(
         &self,
         pose_a: &Pose,
@@ -466,6 +536,8 @@ pub struct TableReport {
 
 /// The model a scene runs with: the direct engine, or the tabulated central pair.
 #[derive(Debug)]
+// One model per run: the size of the table variant does not matter.
+#[allow(clippy::large_enum_variant)]
 pub enum SceneModel {
     /// Direct surface integral at every evaluation.
     Direct(Box<EngineModel>),
@@ -475,6 +547,10 @@ pub enum SceneModel {
         table: InterpolatedCentralPair,
         /// What it cost and covers.
         report: TableReport,
+        /// Inertia tensors of A and B (their spins are constant on this path).
+        inertia: [Option<InertiaTensor>; 2],
+        /// Why the pair is central along the whole motion.
+        reason: &'static str,
     },
 }
 
@@ -500,11 +576,10 @@ impl SceneModel {
         // slope at the start are reused by the range search.
         let at_start = direct.interaction(&pose_a, &pose_b)?;
         let r0 = initial.relative_position();
-        if !settings.interpolate
-            || !direct.is_central(&pose_a, &pose_b, &initial.relative_velocity())
-        {
+        if !settings.interpolate || direct.symmetric_motion(initial).is_none() {
             return Ok(Self::Direct(Box::new(direct)));
         }
+        let inertia = [direct.inertia_a(), direct.inertia_b()];
         let direction = r0 / r0.norm();
         // B at distance r along the initial direction from A at the origin, both at their
         // initial orientations.
@@ -653,7 +728,13 @@ impl SceneModel {
             table_time,
             startup_time: started.elapsed(),
         };
-        Ok(Self::Interpolated { table, report })
+        let reason = direct.symmetric_motion(initial).unwrap_or(COAXIAL_REASON);
+        Ok(Self::Interpolated {
+            table,
+            report,
+            inertia,
+            reason,
+        })
     }
 
     /// Whether the fast path is in use.
@@ -699,5 +780,26 @@ impl InteractionModel for SceneModel {
     }
     fn contact_distance(&self, pose_a: &Pose, pose_b: &Pose) -> Option<Real> {
         self.model().contact_distance(pose_a, pose_b)
+    }
+    fn inertia_a(&self) -> Option<InertiaTensor> {
+        match self {
+            Self::Direct(m) => m.inertia_a(),
+            Self::Interpolated { inertia, .. } => inertia[0],
+        }
+    }
+    fn inertia_b(&self) -> Option<InertiaTensor> {
+        match self {
+            Self::Direct(m) => m.inertia_b(),
+            Self::Interpolated { inertia, .. } => inertia[1],
+        }
+    }
+    fn wrench(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Wrench, InteractionError> {
+        self.model().wrench(pose_a, pose_b)
+    }
+    fn motion_path(&self, initial: &TwoBodyState) -> MotionPath {
+        match self {
+            Self::Direct(m) => m.motion_path(initial),
+            Self::Interpolated { reason, .. } => MotionPath::Translation(reason),
+        }
     }
 }

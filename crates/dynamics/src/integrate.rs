@@ -2,7 +2,10 @@
 //!
 //! The equations of motion are $m_A \ddot{\mathbf R}_A = \mathbf F_A$,
 //! $m_B \ddot{\mathbf R}_B = -\mathbf F_A$, with $\mathbf F_A$ from an [`InteractionModel`];
-//! orientations and spins are carried unchanged (valid where every torque vanishes).
+//! on this translation path each attitude turns uniformly about its constant angular velocity
+//! (valid where every torque vanishes along the motion, [`crate::MotionPath::Translation`]);
+//! every other scene integrates rotation too ([`crate::rigid`]), chosen by the model's
+//! [`InteractionModel::motion_path`] at the start of every run.
 //!
 //! - [`FixedStep`] with a [`FixedScheme`]:
 //!   - [`FixedScheme::RungeKutta4`]: classical RK4 (the founding paper's), order 4, 4 force
@@ -47,6 +50,7 @@
 
 use crate::interpolate::{state_between, EvenOutput};
 use crate::model::{InteractionError, InteractionModel};
+use crate::rigid;
 use crate::state::{Sample, TwoBodyState};
 use crate::tableau::{
     ErrorWeights, Tableau, DOP853, DOP853_D, DOP853_DENSE_A, DORMAND_PRINCE_54, MAX_STAGES,
@@ -99,9 +103,10 @@ pub enum DynamicsError {
         /// Time of the last accepted state.
         time: Real,
     },
-    /// The model reports torques at the start: rotational dynamics is not integrated yet, so the
-    /// run would be silently wrong.
-    #[error("at t = {time}: the bodies exert torques (|τ_A| = {torque_a:e}, |τ_B| = {torque_b:e}, relative to |F| r: {relative:e}); this scene needs rotational dynamics, which is not implemented yet; use spheres or point masses anywhere, axisymmetric bodies with parallel axes moving in their common equatorial plane, or coplanar disks")]
+    /// The model reports torques on the translation path (its bodies have no inertia tensors,
+    /// or its motion path claims a symmetry its torques contradict): integrating with frozen
+    /// attitudes would be silently wrong.
+    #[error("at t = {time}: the bodies exert torques (|τ_A| = {torque_a:e}, |τ_B| = {torque_b:e}, relative to |F| r: {relative:e}) but the model gives no inertia tensors, so rotational dynamics cannot be integrated; give both bodies their inertia tensors (InteractionModel::inertia_a/inertia_b, or Body::with_inertia)")]
     TorquesNotSupported {
         /// Start time.
         time: Real,
@@ -236,16 +241,18 @@ struct Dynamics<'m> {
     mass_a: Real,
     mass_b: Real,
     template: TwoBodyState,
+    start: Real,
     evaluations: usize,
 }
 
 impl<'m> Dynamics<'m> {
-    fn new(model: &'m dyn InteractionModel, template: TwoBodyState) -> Self {
+    fn new(model: &'m dyn InteractionModel, template: TwoBodyState, start: Real) -> Self {
         Self {
             model,
             mass_a: model.mass_a(),
             mass_b: model.mass_b(),
             template,
+            start,
             evaluations: 0,
         }
     }
@@ -272,16 +279,22 @@ impl<'m> Dynamics<'m> {
         self.model.contact_distance(&pa, &pb)
     }
     fn sample(&self, time: Real, phase: Phase, acc: (Vec3, Vec3)) -> Sample {
+        let mut state = phase.into_state(&self.template);
+        // Translation path: each body spins freely and uniformly (see `MotionPath`).
+        let elapsed = time - self.start;
+        for body in [&mut state.body_a, &mut state.body_b] {
+            *body = body.spun(elapsed);
+        }
         Sample {
             time,
-            state: phase.into_state(&self.template),
+            state,
             acceleration_a: acc.0,
             acceleration_b: acc.1,
         }
     }
 }
 
-fn check_span(t_start: Real, t_end: Real) -> Result<(), DynamicsError> {
+pub(crate) fn check_span(t_start: Real, t_end: Real) -> Result<(), DynamicsError> {
     if !t_start.is_finite() {
         return Err(DynamicsError::InvalidParameter {
             name: "t_start",
@@ -687,9 +700,53 @@ impl FixedStep {
     }
 }
 
+impl FixedStep {
+    fn rigid_method(&self) -> rigid::Method<'_> {
+        rigid::Method::Fixed {
+            scheme: self.scheme,
+            weights: &self.weights,
+            step: self.step,
+        }
+    }
+}
+
 impl Integrator for FixedStep {
     fn name(&self) -> &'static str {
         self.scheme.name()
+    }
+
+    fn integrate_with_output(
+        &mut self,
+        model: &dyn InteractionModel,
+        initial: &TwoBodyState,
+        t_start: Real,
+        t_end: Real,
+        interval: Real,
+        observer: &mut dyn FnMut(&Sample),
+        emit: &mut dyn FnMut(Real, &TwoBodyState),
+    ) -> Result<RunSummary, DynamicsError> {
+        let mut clock = OutputClock::new(t_start, interval)?;
+        if model.motion_path(initial).is_rotation() {
+            check_span(t_start, t_end)?;
+            return rigid::integrate(
+                self.rigid_method(),
+                model,
+                initial,
+                t_start,
+                t_end,
+                observer,
+                Some((&mut clock, emit)),
+            );
+        }
+        let mut output = EvenOutput::new(interval).ok_or(DynamicsError::InvalidParameter {
+            name: "interval",
+            requirement: "positive and finite",
+            value: interval,
+        })?;
+        self.integrate(model, initial, t_start, t_end, &mut |sample| {
+            output.observe(sample, emit);
+            observer(sample);
+        })
     }
 
     fn integrate(
@@ -701,7 +758,18 @@ impl Integrator for FixedStep {
         observer: &mut dyn FnMut(&Sample),
     ) -> Result<RunSummary, DynamicsError> {
         check_span(t_start, t_end)?;
-        let mut dynamics = Dynamics::new(model, *initial);
+        if model.motion_path(initial).is_rotation() {
+            return rigid::integrate(
+                self.rigid_method(),
+                model,
+                initial,
+                t_start,
+                t_end,
+                observer,
+                None,
+            );
+        }
+        let mut dynamics = Dynamics::new(model, *initial, t_start);
         let mut current = initial_sample(&mut dynamics, initial, t_start)?;
         observer(&current);
         let span = t_end - t_start;
@@ -1128,6 +1196,27 @@ impl Adaptive {
         mut output: EvenStates<'_>,
     ) -> Result<RunSummary, DynamicsError> {
         check_span(t_start, t_end)?;
+        if model.motion_path(initial).is_rotation() {
+            let settings = rigid::AdaptiveSettings {
+                tableau: self.pair.tableau(),
+                dense: self.pair == EmbeddedPair::Dop853,
+                relative_tolerance: self.relative_tolerance,
+                absolute_tolerance: self.absolute_tolerance,
+                min_step: self.min_step,
+                max_step: self.max_step,
+                initial_step: self.initial_step,
+                max_steps: self.max_steps,
+            };
+            return rigid::integrate(
+                rigid::Method::Adaptive(settings),
+                model,
+                initial,
+                t_start,
+                t_end,
+                observer,
+                output,
+            );
+        }
         let span = t_end - t_start;
         let min_step = if self.min_step > 0.0 {
             self.min_step
@@ -1137,7 +1226,7 @@ impl Adaptive {
         let tableau = self.pair.tableau();
         let exponent = -1.0 / Real::from(tableau.error_order + 1);
         let (shrink_limit, grow_limit) = tableau.factor_range;
-        let mut dynamics = Dynamics::new(model, *initial);
+        let mut dynamics = Dynamics::new(model, *initial, t_start);
         let mut current = initial_sample(&mut dynamics, initial, t_start)?;
         if let Some((clock, emit)) = output.as_mut() {
             while let Some(t) = clock.next_until(current.time) {
@@ -1274,14 +1363,14 @@ type EvenStates<'a> = Option<(&'a mut OutputClock, &'a mut dyn FnMut(Real, &TwoB
 
 /// Output times $t_0 + k\Delta$ (computed from $k$, no accumulated round-off).
 #[derive(Debug, Clone)]
-struct OutputClock {
+pub(crate) struct OutputClock {
     start: Real,
     interval: Real,
     emitted: u64,
 }
 
 impl OutputClock {
-    fn new(start: Real, interval: Real) -> Result<Self, DynamicsError> {
+    pub(crate) fn new(start: Real, interval: Real) -> Result<Self, DynamicsError> {
         if !(interval.is_finite() && interval > 0.0) {
             return Err(DynamicsError::InvalidParameter {
                 name: "interval",
@@ -1297,7 +1386,7 @@ impl OutputClock {
     }
 
     /// The next output time if it is at most `until` (and counts it as emitted).
-    fn next_until(&mut self, until: Real) -> Option<Real> {
+    pub(crate) fn next_until(&mut self, until: Real) -> Option<Real> {
         let t = self.start + self.emitted as Real * self.interval;
         (t <= until).then(|| {
             self.emitted += 1;

@@ -53,7 +53,9 @@ pub fn hermite_quintic(
 }
 
 /// The state at time `time` between two consecutive samples (`time` is clamped to their span).
-/// Orientations and spins are taken from `first` (they are not integrated in this version).
+/// Attitudes turn uniformly from `first`'s about its angular velocity: the translation path's
+/// free spin ([`crate::model::MotionPath::Translation`]); the rotational path interpolates its
+/// own states.
 pub fn state_between(first: &Sample, second: &Sample, time: Real) -> TwoBodyState {
     let h = second.time - first.time;
     if h == 0.0 {
@@ -83,6 +85,12 @@ pub fn state_between(first: &Sample, second: &Sample, time: Real) -> TwoBodyStat
         s,
     );
     let mut state = first.state;
+    state.body_a = state
+        .body_a
+        .spun(time.clamp(first.time, second.time) - first.time);
+    state.body_b = state
+        .body_b
+        .spun(time.clamp(first.time, second.time) - first.time);
     state.body_a.position = xa;
     state.body_a.velocity = va;
     state.body_b.position = xb;

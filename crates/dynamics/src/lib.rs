@@ -20,10 +20,13 @@
 //! - [`run`]: integrate and gather every diagnostic in one call.
 //! - [`tolerance`]: the accuracy requirements the tests hold this crate to.
 //!
-//! Scope: translational motion only; orientations and spins ride along unchanged, which is exact
-//! where every torque vanishes by symmetry (the founding paper's scenes). The integrators refuse,
-//! at the start, a scene whose model reports non-vanishing torques (`TorquesNotSupported`),
-//! until rotational dynamics exists.
+//! - [`rigid`]: the full two-body problem, translation and rotation in 3-D (Euler's equations,
+//!   the geometric splitting of Dullweber, Leimkuhler & McLachlan, Runge–Kutta on the full state).
+//!
+//! Which equations a run integrates is decided by the model's [`MotionPath`] at the start: the
+//! translation-only path only where a symmetry that the motion preserves keeps every torque at
+//! zero for the whole run (spheres and points; coaxial axisymmetric bodies spinning about their
+//! common axis and moving in their common equatorial plane); rotation otherwise.
 //!
 //! ```
 //! use surfgrav_dynamics::{
@@ -55,6 +58,7 @@ pub mod interpolant;
 pub mod interpolate;
 pub mod model;
 pub mod orbit;
+pub mod rigid;
 pub mod run;
 pub mod state;
 mod tableau;
@@ -62,8 +66,8 @@ pub mod tolerance;
 
 pub use choice::{IntegratorChoiceError, IntegratorKind};
 pub use diagnostics::{
-    angular_momentum, kinetic_energy, total_energy, CompensatedSum, ConservationMonitor,
-    ConservationStatistics, SeriesAccumulator, SeriesStatistics,
+    angular_momentum, kinetic_energy, spin_angular_momentum, total_energy, CompensatedSum,
+    ConservationMonitor, ConservationStatistics, SeriesAccumulator, SeriesStatistics,
 };
 pub use engine_model::{
     EngineModel, EngineModelError, SceneModel, SceneSettings, TableReport, ALIGNMENT_SINE,
@@ -73,7 +77,7 @@ pub use integrate::{
     RunSummary, Termination,
 };
 pub use interpolant::{reachable_separations, InterpolantError, InterpolatedCentralPair};
-pub use model::{CentralPair, InteractionError, InteractionModel, PointMasses};
+pub use model::{CentralPair, InteractionError, InteractionModel, MotionPath, PointMasses, Wrench};
 pub use orbit::{Apsis, OrbitAnalyser, OrbitReport};
 pub use run::{run_with_diagnostics, RunReport};
 pub use state::{BodyState, Sample, TwoBodyState};

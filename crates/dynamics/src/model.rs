@@ -13,8 +13,46 @@
 //! The energy is a separate method because the integrators never need it: it is evaluated only
 //! for diagnostics and output.
 
-use surfgrav_potentials::{Pose, Real, Vec3};
+use crate::state::TwoBodyState;
+use surfgrav_potentials::{InertiaTensor, Pose, Real, Vec3};
 use thiserror::Error;
+
+/// Force on A and the torques on both bodies about their own centroids, world frame, from one
+/// evaluation (the force on B is $-\mathbf F_A$).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Wrench {
+    /// Force on A.
+    pub force_on_a: Vec3,
+    /// Torque on A about A's centroid.
+    pub torque_on_a: Vec3,
+    /// Torque on B about B's centroid.
+    pub torque_on_b: Vec3,
+}
+
+/// Which equations a run integrates, and why.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MotionPath {
+    /// Translation only: the torques vanish along the whole motion (by a symmetry the motion
+    /// preserves), so each body keeps its angular velocity and its attitude turns uniformly
+    /// about it, $\mathsf Q(t) = \exp\big((t - t_0)\,\boldsymbol\omega\big)\mathsf Q_0$.
+    Translation(&'static str),
+    /// Translation and rotation ([`crate::rigid`]).
+    Rotation(&'static str),
+}
+
+impl MotionPath {
+    /// Whether attitudes and spins are integrated.
+    pub fn is_rotation(&self) -> bool {
+        matches!(self, MotionPath::Rotation(_))
+    }
+
+    /// Why this path.
+    pub fn reason(&self) -> &'static str {
+        match self {
+            MotionPath::Translation(r) | MotionPath::Rotation(r) => r,
+        }
+    }
+}
 
 /// Why a model could not evaluate the interaction.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -90,6 +128,44 @@ pub trait InteractionModel: Send + Sync {
     ) -> Result<Option<(Vec3, Vec3)>, InteractionError> {
         let _ = (pose_a, pose_b);
         Ok(None)
+    }
+
+    /// Inertia tensor of A about its centroid, body frame; `None` (the default) when A cannot
+    /// rotate (a point mass) or the model does not say.
+    fn inertia_a(&self) -> Option<InertiaTensor> {
+        None
+    }
+
+    /// Inertia tensor of B (as [`InteractionModel::inertia_a`]).
+    fn inertia_b(&self) -> Option<InertiaTensor> {
+        None
+    }
+
+    /// Force and torques from one evaluation. The default calls
+    /// [`InteractionModel::force_on_a`] and [`InteractionModel::torques`] (zero torques where
+    /// those vanish identically); models that compute both in one pass override it.
+    fn wrench(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Wrench, InteractionError> {
+        let force_on_a = self.force_on_a(pose_a, pose_b)?;
+        let (torque_on_a, torque_on_b) = self
+            .torques(pose_a, pose_b)?
+            .unwrap_or((Vec3::zeros(), Vec3::zeros()));
+        Ok(Wrench {
+            force_on_a,
+            torque_on_a,
+            torque_on_b,
+        })
+    }
+
+    /// Which equations a run from `initial` needs. The default: rotation when either body has
+    /// an inertia tensor, translation otherwise (the torques of a model without rotating bodies
+    /// vanish identically).
+    fn motion_path(&self, initial: &TwoBodyState) -> MotionPath {
+        let _ = initial;
+        if self.inertia_a().is_some() || self.inertia_b().is_some() {
+            MotionPath::Rotation("the bodies have inertia tensors and may exert torques")
+        } else {
+            MotionPath::Translation("no body can rotate")
+        }
     }
 
     /// Centroid separation at which the bodies touch, if they can touch (None for point masses).

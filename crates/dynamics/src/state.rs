@@ -2,9 +2,9 @@
 //!
 //! Each body carries its centroid position $\mathbf R$ and velocity $\dot{\mathbf R}$, and also its
 //! orientation (a unit quaternion, body frame → world frame) and angular velocity $\boldsymbol\omega$
-//! (world frame). This crate integrates the translational motion only: orientation and spin are
-//! carried unchanged through every step, so rotational dynamics can join later without changing the
-//! state's shape.
+//! (world frame). Where the torques vanish along the whole motion by symmetry, the attitude
+//! turns uniformly about the constant angular velocity; otherwise [`crate::rigid`] integrates
+//! it.
 
 use nalgebra::UnitQuaternion;
 use surfgrav_potentials::{Pose, Real, Vec3};
@@ -18,7 +18,7 @@ pub struct BodyState {
     pub velocity: Vec3,
     /// Body frame → world frame.
     pub orientation: UnitQuaternion<Real>,
-    /// Angular velocity in the world frame (carried, not integrated, in this version).
+    /// Angular velocity in the world frame.
     pub angular_velocity: Vec3,
 }
 
@@ -38,6 +38,21 @@ impl BodyState {
         Pose {
             position: self.position,
             rotation: self.orientation,
+        }
+    }
+
+    /// The same body with its attitude turned by its own angular velocity over `elapsed`:
+    /// $\mathsf Q \leftarrow \exp(\text{elapsed}\,\boldsymbol\omega)\,\mathsf Q$ (uniform spin
+    /// about a fixed axis: exact for a torque-free sphere, and for an axisymmetric body spinning
+    /// about its symmetry axis).
+    pub fn spun(&self, elapsed: Real) -> Self {
+        if self.angular_velocity == Vec3::zeros() || elapsed == 0.0 {
+            return *self;
+        }
+        Self {
+            orientation: UnitQuaternion::from_scaled_axis(self.angular_velocity * elapsed)
+                * self.orientation,
+            ..*self
         }
     }
 

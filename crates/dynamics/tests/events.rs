@@ -232,7 +232,7 @@ fn torques_are_refused() {
         error,
         DynamicsError::TorquesNotSupported { time: 0.0, .. }
     ));
-    assert!(error.to_string().contains("rotational dynamics"));
+    assert!(error.to_string().contains("inertia tensors"));
     assert!(integrator
         .integrate(
             &Twisting(point, 1e-13),
