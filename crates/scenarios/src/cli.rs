@@ -280,6 +280,7 @@ fn field_commands(command: Command) -> Result<String, UserError> {
         Command::Potential { body, at, g } => {
             let g = parse_positive("--g", &g).map_err(UserError)?;
             let spec: BodySpec = body.parse()?;
+            let is_disk = spec.kind == crate::spec::BodyKind::Disk;
             let body = spec.build(g)?.into_potential();
             let r = parse_vector("--at", &at)?;
             let field = body.field(&r);
@@ -291,6 +292,14 @@ fn field_commands(command: Command) -> Result<String, UserError> {
                 return Err(UserError(if body.bounding_radius() == 0.0 {
                     "--at is the position of the point mass, where its potential is infinite"
                         .to_string()
+                } else if is_disk && out.potential.is_finite() {
+                    // The rim: a_ρ ≈ −2Gσ(ln(8R/d) − 2) at a distance d from it.
+                    format!(
+                        "--at {at} lies on the disk's rim, where the in-plane attraction is \
+                         infinite (it grows like 2Gσ·ln(8R/d) at a distance d from the rim); \
+                         the potential there is finite, Φ = {}: move the point off the rim",
+                        significant(out.potential, 10)
+                    )
                 } else {
                     format!("the field at --at {at} is not finite for this body")
                 }));
@@ -471,6 +480,22 @@ pub fn load_scene(which: &str, overrides: &Overrides) -> Result<Scene, CliError>
     Ok(scene)
 }
 
+/// `x` with `digits` significant digits: positional between 1e-3 and 1e6 (`18.9638`,
+/// `0.00123457`), scientific outside (`1.23457e-9`), `0` for zero.
+pub fn significant(x: f64, digits: usize) -> String {
+    let digits = digits.max(1);
+    if x == 0.0 || !x.is_finite() {
+        return x.to_string();
+    }
+    let magnitude = x.abs().log10().floor() as i32;
+    if (-3..6).contains(&magnitude) {
+        let decimals = (digits as i32 - 1 - magnitude).max(0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.prec$e}", prec = digits - 1)
+    }
+}
+
 /// A progress bar on stderr when it is a terminal and not `quiet`; hidden otherwise.
 pub fn progress_bar(quiet: bool, length: u64, message: &str) -> ProgressBar {
     let bar = if quiet {
@@ -495,24 +520,32 @@ fn run_command(
 ) -> Result<String, CliError> {
     let scene = load_scene(which, overrides)?;
     scene.integrator.make().map_err(CliError::Input)?;
+    // The output folder is checked and created (hidden, under a temporary name) before the
+    // computation, so a bad --out costs nothing and the trajectory can be streamed into it.
     let folder = output::choose_folder(out, &scene.name).map_err(CliError::Input)?;
+    let staging = output::Staging::new(&folder).map_err(CliError::Input)?;
     let prepared = simulate::prepare(&scene)?;
+    let mut csv = output::TrajectoryWriter::create(&staging.path().join("trajectory.csv"))
+        .map_err(CliError::Failed)?;
     const TICKS: u64 = 1000;
     let bar = progress_bar(quiet, TICKS, &scene.name);
     let span = scene.t_end - scene.t_start;
     let mut last_tick = 0;
-    let record = simulate::simulate(&scene, &prepared, &mut |t| {
-        let tick = (((t - scene.t_start) / span).clamp(0.0, 1.0) * TICKS as f64) as u64;
-        if tick != last_tick {
-            last_tick = tick;
-            bar.set_position(tick);
-        }
-    });
+    let record = simulate::simulate(
+        &scene,
+        &prepared,
+        &mut |t| {
+            let tick = (((t - scene.t_start) / span).clamp(0.0, 1.0) * TICKS as f64) as u64;
+            if tick != last_tick {
+                last_tick = tick;
+                bar.set_position(tick);
+            }
+        },
+        &mut |row| csv.write(row),
+    );
     bar.finish_and_clear();
     let record = record?;
-    let staging = output::Staging::new(&folder).map_err(CliError::Failed)?;
-    output::write_trajectory(&record, &staging.path().join("trajectory.csv"))
-        .map_err(CliError::Failed)?;
+    csv.finish().map_err(CliError::Failed)?;
     output::write_summary(&record, &staging.path().join("summary.json"))
         .map_err(CliError::Failed)?;
     let figures = figures::write_all(&record, staging.path())
@@ -583,28 +616,36 @@ fn bench_command(
 
 /// What `surfgrav run` prints: the folder, its files and the key numbers.
 pub fn run_digest(record: &RunRecord, folder: &Path, files: &[String]) -> String {
-    let show = |x: Option<f64>, digits: usize, unit: &str| {
-        x.map_or("n/a".to_string(), |v| format!("{v:.digits$}{unit}"))
+    let units = figures::Units::of(&record.scene);
+    // Significant digits, not fixed decimals: an SI run's Ω_p of 1e-9 ′/s must not print 0.000.
+    let show = |x: Option<f64>, unit: &str| {
+        x.map_or("n/a".to_string(), |v| {
+            format!("{}{unit}", significant(v, 6))
+        })
     };
+    let time = units.time_suffix();
+    let length = units.length_suffix();
     let o = &record.orbit;
     let mut lines = vec![
         format!("wrote {}/: {}", folder.display(), files.join(", ")),
         format!(
-            "{}: {} steps, {} force evaluations, {:.3} s ({}, {})",
+            "{}: {} steps, {} force evaluations, {:.3} s wall ({}, {}); {} rows written ({})",
             record.scene.name,
             record.summary.steps,
             record.summary.force_evaluations,
             record.wall_seconds,
             figures::integrator_label(record),
-            record.method
+            record.method,
+            record.rows_written,
+            record.output.rule()
         ),
         format!(
             "precession ψ_p = {}, Ω_p = {}; T_r = {}, T_ψ = {}; minimum separation {}",
-            show(o.precession_angle_deg, 4, "°"),
-            show(o.precession_rate_arcmin, 3, "′ per time unit"),
-            show(o.radial_period, 4, ""),
-            show(o.azimuthal_period, 4, ""),
-            show(o.minimum_separation, 5, "")
+            show(o.precession_angle_deg, "°"),
+            show(o.precession_rate_arcmin, &format!("′ per {}", units.time_singular)),
+            show(o.radial_period, &time),
+            show(o.azimuthal_period, &time),
+            show(o.minimum_separation, &length)
         ),
         format!(
             "energy: σ(ΔE) = {:.2e} per step, max |E − E0|/|E0| = {:.2e}; angular momentum: σ(ΔJ) = {:.2e}, max drift {:.2e}",
@@ -616,7 +657,8 @@ pub fn run_digest(record: &RunRecord, folder: &Path, files: &[String]) -> String
     ];
     if let Some(t) = record.contact() {
         lines.push(format!(
-            "the bodies touched at t = {t}: the run stopped there"
+            "the bodies touched at t = {}{time}: the run stopped there",
+            crate::spec::compact(t)
         ));
     }
     lines.join("\n")

@@ -10,10 +10,12 @@
 //! - `trajectory.csv`: header row, then one row per written sample: `t`, `xa, ya, za`,
 //!   `xb, yb, zb`, `vxa, vya, vza`, `vxb, vyb, vzb` (world frame), `separation`, `energy`
 //!   ($E = T + V$), `angular_momentum` ($|\mathbf J|$ about the origin); shortest round-trip
-//!   decimal form.
+//!   decimal form. Streamed as the run goes ([`TrajectoryWriter`]); which samples are written
+//!   follows [`OutputPlan::of`] (by default at most [`DEFAULT_MAX_ROWS`] rows).
 //! - `summary.json`: see [`Summary`].
 //! - figures as PNG and SVG (see [`crate::figures`]).
 
+use std::fmt::Write as _;
 use std::fs;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -22,7 +24,8 @@ use serde::Serialize;
 use surfgrav_dynamics::ConservationStatistics;
 use surfgrav_potentials::Real;
 
-use crate::simulate::RunRecord;
+use crate::scene::{IntegratorChoice, OutputCadence, Scene};
+use crate::simulate::{OutputRow, RunRecord};
 
 /// Statistics of one conserved quantity in `summary.json`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -54,6 +57,21 @@ impl From<&ConservationStatistics> for ConservationSummary {
     }
 }
 
+/// How `trajectory.csv` was written, in `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OutputSummary {
+    /// Rows written (header excluded).
+    pub rows: usize,
+    /// Every n-th step was written (`null` with an interval).
+    pub every: Option<usize>,
+    /// Rows at $t_0 + k\,\Delta$ from the dense output (`null` with `every`).
+    pub interval: Option<Real>,
+    /// `scene` (the scene file's `[output]`) or `default` (chosen from the run's length).
+    pub chosen_by: &'static str,
+    /// The rule, in words.
+    pub rule: String,
+}
+
 /// The contents of `summary.json` (keys in this order; absent quantities are `null`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Summary {
@@ -77,16 +95,22 @@ pub struct Summary {
     pub precession_angle_deg: Option<Real>,
     /// $\Omega_p$ in arcminutes per time unit.
     pub precession_rate_arcmin: Option<Real>,
-    /// Energy statistics.
+    /// Energy statistics (every step, whatever the output cadence).
     pub energy: ConservationSummary,
-    /// Angular-momentum statistics.
+    /// Angular-momentum statistics (every step).
     pub angular_momentum: ConservationSummary,
+    /// How the trajectory was written.
+    pub output: OutputSummary,
 }
 
 impl Summary {
     /// The summary of a run.
     pub fn of(run: &RunRecord) -> Self {
         let o = &run.orbit;
+        let (every, interval) = match run.output.cadence {
+            Cadence::Every(n) => (Some(n), None),
+            Cadence::Interval(d) => (None, Some(d)),
+        };
         Self {
             scene: run.scene.name.clone(),
             t_end: run.t_reached(),
@@ -100,41 +124,171 @@ impl Summary {
             precession_rate_arcmin: o.precession_rate_arcmin,
             energy: (&run.energy).into(),
             angular_momentum: (&run.angular_momentum).into(),
+            output: OutputSummary {
+                rows: run.rows_written,
+                every,
+                interval,
+                chosen_by: if run.output.by_default {
+                    "default"
+                } else {
+                    "scene"
+                },
+                rule: run.output.rule(),
+            },
         }
     }
+}
+
+/// Most rows the default output cadence writes (about 3 MB of CSV), plus the last state.
+pub const DEFAULT_MAX_ROWS: usize = 10_000;
+
+/// Which samples become rows of `trajectory.csv`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Cadence {
+    /// Every n-th step (the integrator's own samples, exact), and the last.
+    Every(usize),
+    /// The states at $t_0 + k\,\Delta$ from the integrator's dense output, and the last.
+    Interval(Real),
+}
+
+/// The output cadence of a run and whether the scene chose it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OutputPlan {
+    /// The cadence.
+    pub cadence: Cadence,
+    /// Chosen by [`OutputPlan::of`] from the run's length (no `every` or `interval` given).
+    pub by_default: bool,
+}
+
+impl OutputPlan {
+    /// The scene's `[output] every` or `interval`; by default, for a fixed step h over a span
+    /// T, every $\lceil (T/h) / 10^4 \rceil$-th step (every step when there are at most
+    /// [`DEFAULT_MAX_ROWS`]), and for an adaptive method the dense output at the smallest
+    /// interval of the form 1, 2 or 5 × 10^k that gives at most [`DEFAULT_MAX_ROWS`] rows.
+    pub fn of(scene: &Scene) -> Self {
+        let span = scene.t_end - scene.t_start;
+        let max_rows = DEFAULT_MAX_ROWS as Real;
+        match scene.output {
+            OutputCadence::Every(n) => Self {
+                cadence: Cadence::Every(n.max(1)),
+                by_default: false,
+            },
+            OutputCadence::Interval(d) => Self {
+                cadence: Cadence::Interval(d),
+                by_default: false,
+            },
+            OutputCadence::Default => Self {
+                cadence: match scene.integrator {
+                    IntegratorChoice::Fixed { step, .. } => {
+                        let steps = (span / step).ceil();
+                        // Saturates for absurd step counts; at least every step.
+                        Cadence::Every(((steps / max_rows).ceil() as usize).max(1))
+                    }
+                    IntegratorChoice::Adaptive { .. } => {
+                        Cadence::Interval(round_up_to_1_2_5(span / max_rows))
+                    }
+                },
+                by_default: true,
+            },
+        }
+    }
+
+    /// The rule in words, for `summary.json`.
+    pub fn rule(&self) -> String {
+        let what = match self.cadence {
+            Cadence::Every(1) => "every step".to_string(),
+            Cadence::Every(n) => format!("one step in {n}"),
+            Cadence::Interval(d) => format!(
+                "the dense output at t_start + k·{}",
+                crate::spec::compact(d)
+            ),
+        };
+        if self.by_default {
+            format!(
+                "{what} and the last state (default: at most {DEFAULT_MAX_ROWS} rows; set [output] every or interval to change it); diagnostics use every step"
+            )
+        } else {
+            format!("{what} and the last state ([output] of the scene); diagnostics use every step")
+        }
+    }
+}
+
+/// The smallest number of the form 1, 2 or 5 × 10^k (as its nearest double) at or above `x`.
+fn round_up_to_1_2_5(x: Real) -> Real {
+    if !(x.is_finite() && x > 0.0) {
+        return 1.0;
+    }
+    let k = x.log10().floor() as i32;
+    for exponent in [k - 1, k, k + 1] {
+        for mantissa in [1, 2, 5] {
+            let candidate: Real = format!("{mantissa}e{exponent}")
+                .parse()
+                .unwrap_or(Real::NAN);
+            if candidate >= x {
+                return candidate;
+            }
+        }
+    }
+    x
 }
 
 /// The CSV header of `trajectory.csv`.
 pub const TRAJECTORY_HEADER: &str =
     "t,xa,ya,za,xb,yb,zb,vxa,vya,vza,vxb,vyb,vzb,separation,energy,angular_momentum";
 
-/// Writes `trajectory.csv` (every `scene.output_every`-th sample and the last one).
-///
-/// # Errors
-/// I/O errors, with the path.
-pub fn write_trajectory(run: &RunRecord, path: &Path) -> Result<(), String> {
-    let fail = |e: std::io::Error| format!("cannot write {}: {e}", path.display());
-    let mut w = BufWriter::new(fs::File::create(path).map_err(fail)?);
-    writeln!(w, "{TRAJECTORY_HEADER}").map_err(fail)?;
-    let every = run.scene.output_every.max(1);
-    let last = run.samples.len().saturating_sub(1);
-    for (k, s) in run.samples.iter().enumerate() {
-        if k % every != 0 && k != last {
-            continue;
-        }
-        let (a, b) = (&s.state.body_a, &s.state.body_b);
-        let mut row = vec![s.time];
-        row.extend(a.position.iter());
-        row.extend(b.position.iter());
-        row.extend(a.velocity.iter());
-        row.extend(b.velocity.iter());
-        row.push(s.state.separation());
-        row.push(run.energies[k]);
-        row.push(run.angular_momenta[k]);
-        let text: Vec<String> = row.iter().map(|x| x.to_string()).collect();
-        writeln!(w, "{}", text.join(",")).map_err(fail)?;
+/// `trajectory.csv`, written row by row as the run goes (nothing is held in memory).
+pub struct TrajectoryWriter {
+    writer: BufWriter<fs::File>,
+    path: PathBuf,
+}
+
+impl TrajectoryWriter {
+    /// Creates the file and writes the header.
+    ///
+    /// # Errors
+    /// I/O errors, with the path.
+    pub fn create(path: &Path) -> Result<Self, String> {
+        let fail = |e: std::io::Error| format!("cannot write {}: {e}", path.display());
+        let mut writer = BufWriter::new(fs::File::create(path).map_err(fail)?);
+        writeln!(writer, "{TRAJECTORY_HEADER}").map_err(fail)?;
+        Ok(Self {
+            writer,
+            path: path.to_path_buf(),
+        })
     }
-    w.flush().map_err(fail)
+
+    /// Appends one row (shortest round-trip decimals).
+    ///
+    /// # Errors
+    /// I/O errors, with the path.
+    pub fn write(&mut self, row: &OutputRow) -> Result<(), String> {
+        let (a, b) = (&row.state.body_a, &row.state.body_b);
+        let mut line = String::with_capacity(320);
+        let values = std::iter::once(row.time)
+            .chain(a.position.iter().copied())
+            .chain(b.position.iter().copied())
+            .chain(a.velocity.iter().copied())
+            .chain(b.velocity.iter().copied())
+            .chain([row.state.separation(), row.energy, row.angular_momentum]);
+        for (k, x) in values.enumerate() {
+            if k > 0 {
+                line.push(',');
+            }
+            let _ = write!(line, "{x}");
+        }
+        writeln!(self.writer, "{line}")
+            .map_err(|e| format!("cannot write {}: {e}", self.path.display()))
+    }
+
+    /// Flushes and closes the file.
+    ///
+    /// # Errors
+    /// I/O errors, with the path.
+    pub fn finish(mut self) -> Result<(), String> {
+        self.writer
+            .flush()
+            .map_err(|e| format!("cannot write {}: {e}", self.path.display()))
+    }
 }
 
 /// Writes `summary.json`.
@@ -146,13 +300,64 @@ pub fn write_summary(run: &RunRecord, path: &Path) -> Result<(), String> {
     fs::write(path, text + "\n").map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
-/// Where a run or report goes: `out` if given (it must not exist, or be an empty folder),
-/// otherwise `NAME` in the working directory, or `NAME-2`, `NAME-3`, … if that exists.
+/// Whether `name` can name a folder as it is: letters, digits, `-`, `_`, `.` (ASCII), not
+/// starting with `.`.
+pub fn folder_safe(name: &str) -> bool {
+    !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+        && !name.starts_with('.')
+}
+
+/// The folder that must hold `out`: it must exist and be a folder. Says which ancestor is a
+/// file, or which folder is missing.
+fn check_parent(out: &Path) -> Result<(), String> {
+    let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) else {
+        return Ok(());
+    };
+    for ancestor in parent.ancestors() {
+        if ancestor.as_os_str().is_empty() {
+            break;
+        }
+        match fs::metadata(ancestor) {
+            Ok(meta) if meta.is_dir() => {
+                if ancestor == parent {
+                    return Ok(());
+                }
+                break;
+            }
+            Ok(_) => {
+                return Err(format!(
+                    "--out {}: {} is a file, not a folder: choose an output path inside a folder",
+                    out.display(),
+                    ancestor.display()
+                ))
+            }
+            Err(_) => continue,
+        }
+    }
+    Err(format!(
+        "--out {}: the folder {} does not exist: create it first (mkdir -p {}) or choose another path",
+        out.display(),
+        parent.display(),
+        parent.display()
+    ))
+}
+
+/// Where a run or report goes: `out` if given (it must not exist, or be an empty folder, and
+/// its parent must be an existing folder), otherwise `NAME` in the working directory, or
+/// `NAME-2`, `NAME-3`, … if that exists (`NAME` must then be folder-safe, see
+/// [`folder_safe`]). Checked before anything is computed.
 ///
 /// # Errors
-/// An explicit `out` that exists and is not an empty folder.
+/// An explicit `out` that exists and is not an empty folder, or whose parent is missing or a
+/// file; a name that cannot name a folder without `--out`.
 pub fn choose_folder(out: Option<&Path>, name: &str) -> Result<PathBuf, String> {
     if let Some(out) = out {
+        if out.as_os_str().is_empty() {
+            return Err("--out must not be empty".into());
+        }
         if out.exists() {
             let empty = out.is_dir() && fs::read_dir(out).is_ok_and(|mut d| d.next().is_none());
             if !empty {
@@ -162,10 +367,14 @@ pub fn choose_folder(out: Option<&Path>, name: &str) -> Result<PathBuf, String> 
                 ));
             }
         }
-        if out.as_os_str().is_empty() {
-            return Err("--out must not be empty".into());
-        }
+        check_parent(out)?;
         return Ok(out.to_path_buf());
+    }
+    if !folder_safe(name) {
+        return Err(format!(
+            "the scene name `{name}` cannot name the default output folder (letters, digits, \
+             -, _, . only, not starting with .): give --out DIR"
+        ));
     }
     let base = PathBuf::from(name);
     if !base.exists() {

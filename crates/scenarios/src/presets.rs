@@ -66,7 +66,8 @@ macro_rules! paper_scene {
             "tolerance = 1e-12   # relative accuracy of the surface integrals\n",
             "tabulate = true     # tabulated V(r): exact to ~1e-14, the pair is central\n",
             "\n[output]\n",
-            "every = 1\n",
+            "# every = 1       # every n-th step; or interval = 0.5 (dense output at t_start + k·0.5)\n",
+            "# default: every step up to 10,000 rows, then a cadence that keeps ~10,000\n",
             "figures = [\"orbits\", \"conservation\", \"histograms\"]\n",
         )
     };

@@ -2,15 +2,16 @@
 //! with their figures.
 //!
 //! - **Precession table**: $\psi_p$, $\Omega_p$, $T_r$, $T_\psi$ and the minimum separation of
-//!   every paper preset, beside the paper's rounded values (Sect. 4.1–4.2) and the
-//!   continuous-time reference values of issue 5.
+//!   every paper preset, beside the paper's rounded values (Sect. 4.1–4.2) and continuous-time
+//!   reference values of an independent computation.
 //! - **Table 2**: mean, $\sigma$, $\sigma/\sqrt N$ and slope of $\Delta E$ and $\Delta J$ for
 //!   2S and 2D, beside the paper's.
 //! - **Fig. 7**: the relative difference of the separation,
 //!   $\Delta r/r = (r_{\text{spheroids}}(t) - r_{\text{reference}}(t))/r_{\text{reference}}(t)$,
 //!   for c/a = 0.99 vs point masses, c/a = 0.01 vs uniform disks and the two cross pairings,
-//!   compared at the common times $t_k = 0.1\,k$ (samples of the dt = 0.01 disk run are
-//!   interpolated with the quintic Hermite dense output, error $O(h^6)$).
+//!   compared at the common times $t_k = 0.1\,k$: each run writes its states there
+//!   (`[output] interval = 0.1`; the dt = 0.01 disk run's come from the quintic Hermite dense
+//!   output, error $O(h^6)$).
 //! - **The flat limit**: a homogeneous spheroid flattened to c → 0 becomes a *Maclaurin disk*,
 //!   surface density $\sigma(s) = \frac{3M}{2\pi a^2}\sqrt{1 - s^2/a^2}$, not a uniform disk.
 //!   Their second moments differ: $\int s^2\,\mathrm dm = \frac25 M a^2$ against
@@ -27,7 +28,6 @@ use std::fs;
 use std::path::Path;
 
 use rayon::prelude::*;
-use surfgrav_dynamics::interpolate::state_between;
 use surfgrav_potentials::{Pose, Real, Spheroid, UniformDisk, Vec3};
 use surfgrav_surfaces::interaction::{Body, InteractionEngine, InteractionOptions};
 
@@ -36,6 +36,7 @@ use crate::figures;
 use crate::output::{choose_folder, Staging};
 use crate::plot::{write_figure, Figure, LinePanel, Panel, Series, Style};
 use crate::presets;
+use crate::scene::OutputCadence;
 use crate::simulate::{run_scene, RunRecord};
 
 /// The presets the report runs, in table order.
@@ -95,7 +96,7 @@ pub const PAPER_PRECESSION: [PrecessionValues; 3] = [
     },
 ];
 
-/// Issue 5's continuous-time reference values (an independent computation, rounded as shown).
+/// Continuous-time reference values (an independent computation, rounded as shown).
 pub const REFERENCE_PRECESSION: [PrecessionValues; 4] = [
     PrecessionValues {
         scene: "paper-2s",
@@ -142,17 +143,15 @@ pub const PAPER_TABLE2: [(&str, &str, Real, Real, Real, Real); 4] = [
 /// Spacing of the common times of the Fig. 7 comparison.
 pub const COMPARISON_INTERVAL: Real = 0.1;
 
-/// The separation at `time` from a run's samples (Hermite dense output between samples).
+/// The separation at `time` from a run's written rows (a run of the report writes its states
+/// at $t_0 + k \cdot$ [`COMPARISON_INTERVAL`] from the dense output); `None` if no row has
+/// that time.
 pub fn separation_at(run: &RunRecord, time: Real) -> Option<Real> {
-    let s = &run.samples;
-    let i = s.partition_point(|x| x.time < time);
-    if i >= s.len() {
-        return None;
-    }
-    if s[i].time == time || i == 0 {
-        return (s[i].time == time).then(|| s[i].state.separation());
-    }
-    Some(state_between(&s[i - 1], &s[i], time).separation())
+    let rows = &run.rows;
+    let i = rows.partition_point(|x| x.time < time);
+    rows.get(i)
+        .filter(|row| row.time == time)
+        .map(|row| row.state.separation())
 }
 
 /// One Fig. 7 pairing: label, the spheroid run, the reference run, solid or dashed.
@@ -243,16 +242,14 @@ pub fn report_command(out: Option<&Path>, quiet: bool) -> Result<String, CliErro
         .map(|name| -> Result<RunRecord, CliError> {
             let preset = presets::find(name)
                 .ok_or_else(|| CliError::Failed(format!("preset {name} is missing")))?;
-            let scene = preset
+            let mut scene = preset
                 .scene()
                 .map_err(|e| CliError::Failed(e.to_string()))?;
+            // States at the comparison times t = 0.1 k (the dense output).
+            scene.output = OutputCadence::Interval(COMPARISON_INTERVAL);
             let run = run_scene(&scene).map_err(|e| CliError::Failed(format!("{name}: {e}")))?;
             for &kind in &run.scene.figures {
-                let figure = match kind {
-                    crate::scene::FigureKind::Orbits => figures::orbits(&run),
-                    crate::scene::FigureKind::Conservation => figures::conservation(&run),
-                    crate::scene::FigureKind::Histograms => figures::histograms(&run),
-                };
+                let figure = figures::figure(&run, kind);
                 let stem = staging
                     .path()
                     .join(format!("{name}_{}", figures::stem(kind)));
@@ -423,7 +420,7 @@ fn render(
         "\n## Precession (the paper's Sect. 4.1–4.2)\n\n\
          Measured at the paper's steps; apsides located on the dense output, not at step \
          resolution. \"paper\" is the paper's rounded text value; \"reference\" the \
-         continuous-time value of an independent computation quoted in issue 5.\n"
+         continuous-time value of an independent computation.\n"
     );
     let _ = writeln!(
         md,
@@ -517,8 +514,8 @@ fn render(
         md,
         "\n## Limiting cases (the paper's Fig. 7)\n\n\
          Relative difference of the centroid separation, Δr/r = (r_spheroids − r_reference) / \
-         r_reference, at the common times t = 0, 0.1, …, 300 (the 2D run's dt = 0.01 samples \
-         interpolated with the quintic Hermite dense output).\n\n\
+         r_reference, at the common times t = 0, 0.1, …, 300 (each run's states there from its \
+         dense output, the quintic Hermite interpolant between steps).\n\n\
          ![Fig. 7](fig7_limiting_cases.png)\n"
     );
     let _ = writeln!(

@@ -31,7 +31,9 @@
 //! tabulate = true    # tabulated V(r) when the pair is central (module surfgrav_dynamics::engine_model)
 //!
 //! [output]           # optional
-//! every = 1          # write every n-th sample to trajectory.csv (the last one always)
+//! every = 1          # write every n-th step to trajectory.csv (the last one always), or
+//! # interval = 0.5   # the states at t_start + k·interval from the dense output (and the last)
+//! # neither: every step up to 10,000 rows, else a cadence that keeps about 10,000
 //! figures = ["orbits", "conservation", "histograms"]   # the paper's Figs. 2, 3, 4
 //! ```
 //!
@@ -72,7 +74,7 @@ use surfgrav_dynamics::{BodyState, Integrator, IntegratorKind, TwoBodyState};
 use surfgrav_potentials::{Real, Vec3};
 use toml::Spanned;
 
-use crate::spec::{Amount, BodyKind, BodySpec, BuiltBody};
+use crate::spec::{compact, Amount, BodyKind, BodySpec, BuiltBody};
 
 /// The gravitational constant in SI units (CODATA 2018), m³ kg⁻¹ s⁻².
 pub const G_SI: Real = 6.674_30e-11;
@@ -188,9 +190,12 @@ pub struct InteractionFile {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputFile {
-    /// Write every n-th sample to the trajectory (default 1).
+    /// Write every n-th step to the trajectory.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub every: Option<Spanned<i64>>,
+    /// Write the states at $t_0 + k\,\Delta$ from the dense output (instead of `every`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interval: Option<Spanned<Real>>,
     /// Figures to draw (default all three).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub figures: Option<Spanned<Vec<FigureKind>>>,
@@ -250,6 +255,21 @@ pub struct SceneFile {
     #[serde(default)]
     pub output: OutputFile,
 }
+
+/// How often `trajectory.csv` gets a row.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum OutputCadence {
+    /// Chosen from the run's length ([`crate::output::OutputPlan::of`]): every step up to
+    /// [`crate::output::DEFAULT_MAX_ROWS`] rows, fewer evenly spaced ones beyond.
+    Default,
+    /// Every n-th step (and the last).
+    Every(usize),
+    /// The states at $t_0 + k\,\Delta$ from the integrator's dense output (and the last).
+    Interval(Real),
+}
+
+/// Most rows `[output] interval` may ask for (10 million rows are ~3 GB of CSV).
+pub const MAX_INTERVAL_ROWS: Real = 1e7;
 
 /// The integrators a scene can name (the dynamics crate's [`IntegratorKind`]).
 pub type IntegratorName = IntegratorKind;
@@ -323,8 +343,8 @@ pub struct Scene {
     pub interaction_tolerance: Real,
     /// Tabulate V(r) when central.
     pub tabulate: bool,
-    /// Write every n-th sample.
-    pub output_every: usize,
+    /// How often the trajectory is written.
+    pub output: OutputCadence,
     /// Figures to draw.
     pub figures: Vec<FigureKind>,
 }
@@ -370,7 +390,20 @@ impl SceneFile {
     pub fn parse(source: &str, file: &str) -> Result<Self, SceneError> {
         toml::from_str(source).map_err(|e| {
             let start = e.span().map(|s| s.start);
-            let message = e.message().trim().replace('\n', " ");
+            let mut message = e.message().trim().replace('\n', " ");
+            // The TOML parser says "duplicate key" without the key: name it, from the text at
+            // the span (`mass = 2.0` gives `mass`).
+            if message.starts_with("duplicate key") && !message.contains('`') {
+                let key = start
+                    .and_then(|s| source.get(s..))
+                    .and_then(|rest| rest.split(['=', '\n']).next())
+                    .map(|k| k.trim().trim_matches(['[', ']']).trim())
+                    .filter(|k| !k.is_empty());
+                if let Some(key) = key {
+                    message =
+                        format!("duplicate key `{key}`: it is given twice in this table; keep one");
+                }
+            }
             SceneError {
                 file: file.to_string(),
                 line: start.map(|s| line_of(source, s)),
@@ -420,22 +453,15 @@ impl SceneFile {
                 Err(loc.at(
                     value,
                     field,
-                    format!("must be a positive finite number, got {v}"),
+                    format!("must be a positive finite number, got {}", compact(v)),
                 ))
             }
         };
+        // Any name is accepted; only the default output folder needs a folder-safe one (checked
+        // by `output::choose_folder` when no --out is given).
         let name = self.name.get_ref().trim().to_string();
-        let name_ok = !name.is_empty()
-            && name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
-            && !name.starts_with('.');
-        if !name_ok {
-            return Err(loc.at(
-                &self.name,
-                "name",
-                "must be a non-empty folder-safe name (letters, digits, -, _, .; not starting with .)",
-            ));
+        if name.is_empty() || name.chars().any(char::is_control) {
+            return Err(loc.at(&self.name, "name", "must be a non-empty name on one line"));
         }
 
         let g = match (&self.units, &self.gravitational_constant) {
@@ -473,7 +499,11 @@ impl SceneFile {
             return Err(loc.at(
                 &self.t_end,
                 "t_end",
-                format!("must be finite and greater than t_start = {t_start}, got {t_end}"),
+                format!(
+                    "must be finite and greater than t_start = {}, got {}",
+                    compact(t_start),
+                    compact(t_end)
+                ),
             ));
         }
 
@@ -488,7 +518,20 @@ impl SceneFile {
             ));
         }
 
+        check_in_range(&initial, &body_a, &body_b, g).map_err(|message| {
+            loc.at(&self.body_b.get_ref().position, "body_b.position", message)
+        })?;
+
         let integrator = build_integrator(&loc, &self.integrator)?;
+        if let IntegratorChoice::Fixed { step, .. } = integrator {
+            if let Err(message) = step_fits(step, t_end - t_start) {
+                let at = self.integrator.get_ref().step.as_ref().map_or_else(
+                    || loc.at(&self.integrator, "integrator.step", ""),
+                    |s| loc.at(s, "integrator.step", ""),
+                );
+                return Err(SceneError { message, ..at });
+            }
+        }
 
         let interaction_tolerance = match &self.interaction.tolerance {
             Some(t) => {
@@ -497,7 +540,7 @@ impl SceneFile {
                     return Err(loc.at(
                         t,
                         "interaction.tolerance",
-                        format!("must lie in [1e-15, 1e-2], got {v}"),
+                        format!("must lie in [1e-15, 1e-2], got {}", compact(v)),
                     ));
                 }
                 v
@@ -505,16 +548,43 @@ impl SceneFile {
             None => 1e-12,
         };
 
-        let output_every = match &self.output.every {
-            Some(n) if *n.get_ref() < 1 => {
+        let output = match (&self.output.every, &self.output.interval) {
+            (Some(_), Some(i)) => {
+                return Err(loc.at(
+                    i,
+                    "output.interval",
+                    "give either output.every or output.interval, not both",
+                ))
+            }
+            (Some(n), None) if *n.get_ref() < 1 => {
                 return Err(loc.at(
                     n,
                     "output.every",
                     format!("must be a positive whole number, got {}", n.get_ref()),
                 ))
             }
-            Some(n) => usize::try_from(*n.get_ref()).unwrap_or(usize::MAX),
-            None => 1,
+            (Some(n), None) => {
+                OutputCadence::Every(usize::try_from(*n.get_ref()).unwrap_or(usize::MAX))
+            }
+            (None, Some(i)) => {
+                let dt = positive(i, "output.interval")?;
+                let rows = (t_end - t_start) / dt;
+                if rows > MAX_INTERVAL_ROWS {
+                    return Err(loc.at(
+                        i,
+                        "output.interval",
+                        format!(
+                            "would write {} rows over t = {}…{}: choose an interval of at least {}",
+                            compact(rows.ceil()),
+                            compact(t_start),
+                            compact(t_end),
+                            compact((t_end - t_start) / MAX_INTERVAL_ROWS)
+                        ),
+                    ));
+                }
+                OutputCadence::Interval(dt)
+            }
+            (None, None) => OutputCadence::Default,
         };
         let figures = match &self.output.figures {
             Some(f) => {
@@ -544,7 +614,7 @@ impl SceneFile {
             integrator,
             interaction_tolerance,
             tabulate: self.interaction.tabulate.unwrap_or(true),
-            output_every,
+            output,
             figures,
         })
     }
@@ -620,7 +690,7 @@ fn build_body(
             Err(loc.at(
                 v,
                 &field(name),
-                format!("must be a positive finite length, got {x}"),
+                format!("must be a positive finite length, got {}", compact(x)),
             ))
         }
     };
@@ -642,7 +712,10 @@ fn build_body(
                 return Err(loc.at(
                     v,
                     &field("semi_axes"),
-                    format!("must be three positive finite lengths [a, b, c], got {axes:?}"),
+                    format!(
+                        "must be three positive finite lengths [a, b, c], got [{}]",
+                        axes.map(compact).join(", ")
+                    ),
                 ));
             }
             (BodyKind::Ellipsoid, axes.to_vec())
@@ -656,7 +729,7 @@ fn build_body(
             Err(loc.at(
                 v,
                 &field(name),
-                format!("must be a positive finite number, got {x}"),
+                format!("must be a positive finite number, got {}", compact(x)),
             ))
         }
     };
@@ -737,7 +810,7 @@ fn build_integrator(
             Err(loc.at(
                 v,
                 name,
-                format!("must be a positive finite number, got {x}"),
+                format!("must be a positive finite number, got {}", compact(x)),
             ))
         }
     };
@@ -808,18 +881,23 @@ impl Scene {
             if v.is_finite() && v > 0.0 {
                 Ok(v)
             } else {
-                Err(format!("{name} must be a positive finite number, got {v}"))
+                Err(format!(
+                    "{name} must be a positive finite number, got {}",
+                    compact(v)
+                ))
             }
         };
         if let Some(t) = t_end {
             if !(t.is_finite() && t > self.t_start) {
                 return Err(format!(
-                    "--t-end must be finite and greater than the start time {}, got {t}",
-                    self.t_start
+                    "--t-end must be finite and greater than the start time {}, got {}",
+                    compact(self.t_start),
+                    compact(t)
                 ));
             }
             self.t_end = t;
         }
+        let step_given = step.is_some();
         let method = method.unwrap_or(self.integrator.method());
         if method.is_adaptive() {
             if step.is_some() {
@@ -861,9 +939,86 @@ impl Scene {
                 }
             };
             self.integrator = IntegratorChoice::Fixed { method, step };
+            step_fits(step, self.t_end - self.t_start).map_err(|m| {
+                let flag = if step_given { "--dt" } else { "--t-end" };
+                format!("{flag}: {m}")
+            })?;
         }
         Ok(())
     }
+}
+
+/// A fixed step must not be longer than the run: a step of 500 over t = 300 would jump the
+/// bodies across their whole orbit (and out of any tabulated range) in one go.
+fn step_fits(step: Real, span: Real) -> Result<(), String> {
+    if step <= span {
+        Ok(())
+    } else {
+        Err(format!(
+            "the step {} is longer than the run (t_end − t_start = {}): choose a step well below \
+             the run's length and the orbit's period (the paper's presets use 0.1 for t = 300)",
+            compact(step),
+            compact(span)
+        ))
+    }
+}
+
+/// The initial state's derived quantities (squared distances, energies, angular momentum) must
+/// be finite and the separation's square nonzero: positions of ±1e307 overflow r² and every
+/// later error estimate, which is bad input, not a tolerance to relax.
+fn check_in_range(
+    initial: &TwoBodyState,
+    body_a: &BuiltBody,
+    body_b: &BuiltBody,
+    g: Real,
+) -> Result<(), String> {
+    let (ma, mb) = (
+        body_a.into_potential().mass(),
+        body_b.into_potential().mass(),
+    );
+    let (a, b) = (&initial.body_a, &initial.body_b);
+    let separation = initial.separation();
+    let quantities = [
+        ("the squared separation", separation * separation),
+        (
+            "body A's squared distance from the origin",
+            a.position.norm_squared(),
+        ),
+        (
+            "body B's squared distance from the origin",
+            b.position.norm_squared(),
+        ),
+        (
+            "the kinetic energy",
+            0.5 * ma * a.velocity.norm_squared() + 0.5 * mb * b.velocity.norm_squared(),
+        ),
+        (
+            "the potential energy G m_A m_B / r",
+            g * ma * mb / separation,
+        ),
+        (
+            "the angular momentum",
+            (a.position.cross(&a.velocity) * ma + b.position.cross(&b.velocity) * mb).norm(),
+        ),
+    ];
+    for (what, value) in quantities {
+        if !value.is_finite() {
+            return Err(format!(
+                "values out of range: {what} overflows double precision (separation {}): \
+                 rescale the units so that positions, velocities and masses stay well inside \
+                 1e-150…1e150",
+                compact(separation)
+            ));
+        }
+    }
+    if separation * separation == 0.0 {
+        return Err(format!(
+            "values out of range: the squared separation {}² underflows to zero: rescale the \
+             units",
+            compact(separation)
+        ));
+    }
+    Ok(())
 }
 
 /// An adaptive integrator's tolerance must lie in [`IntegratorKind::MIN_TOLERANCE`],

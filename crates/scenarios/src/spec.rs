@@ -90,7 +90,7 @@ pub enum SpecError {
         value: String,
     },
     /// The body's constructor rejected the values.
-    #[error("{kind}: {source}")]
+    #[error("{kind}: {}", body_error_message(.source))]
     Body {
         /// The body kind.
         kind: &'static str,
@@ -348,6 +348,38 @@ impl BodySpec {
     }
 }
 
+/// A number as a person reads it: the shortest decimal that round-trips, in positional form
+/// when that is short (`0.25`, `300`, `6.6743e-11` stays scientific), in scientific form
+/// otherwise (`1e-320`, not 330 digits; `1e307`, not 308).
+pub fn compact(x: f64) -> String {
+    let plain = x.to_string();
+    if !x.is_finite() || x == 0.0 || ((1e-4..1e16).contains(&x.abs()) && plain.len() <= 24) {
+        plain
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// The constructor's message with its numbers in [`compact`] form.
+fn body_error_message(e: &BodyError) -> String {
+    match e {
+        BodyError::NotPositive { field, value } => {
+            format!(
+                "{field} must be a positive finite number, got {}",
+                compact(*value)
+            )
+        }
+        BodyError::NotFinite { field, value } => {
+            format!("{field} must be finite, got {}", compact(*value))
+        }
+        BodyError::OutOfRange { what, value } => format!(
+            "{what} is not representable for these inputs ({}); rescale the units",
+            compact(*value)
+        ),
+        other => other.to_string(),
+    }
+}
+
 /// Parses `X,Y,Z` into a vector of three finite numbers.
 pub fn parse_vector(what: &'static str, text: &str) -> Result<Vec3, SpecError> {
     let bad = || SpecError::BadVector {
@@ -419,6 +451,34 @@ mod tests {
             let err = spec.parse::<BodySpec>().unwrap_err().to_string();
             assert!(err.contains(expected), "{spec}: `{err}` lacks `{expected}`");
         }
+    }
+
+    /// Numbers in messages stay short at any magnitude (a subnormal mass once printed 330
+    /// digits) and round-trip.
+    #[test]
+    fn compact_numbers_are_short_and_exact() {
+        for (x, shown) in [
+            (0.25, "0.25"),
+            (300.0, "300"),
+            (-3.5, "-3.5"),
+            (0.0, "0"),
+            (1e-320, "1e-320"),
+            (1e307, "1e307"),
+            (6.6743e-11, "6.6743e-11"),
+            (f64::INFINITY, "inf"),
+        ] {
+            assert_eq!(compact(x), shown);
+            if x.is_finite() {
+                assert_eq!(compact(x).parse::<f64>().unwrap(), x);
+            }
+        }
+        let err = "sphere:radius=1,mass=1e-320"
+            .parse::<BodySpec>()
+            .unwrap()
+            .build(1.0)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("e-") && err.len() < 120, "{err}");
     }
 
     #[test]

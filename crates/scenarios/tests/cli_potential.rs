@@ -194,3 +194,38 @@ fn bad_input_is_one_line_exit_2() {
         );
     }
 }
+
+/// A point on a disk's rim is refused plainly (the in-plane attraction is infinite there),
+/// never answered with a finite stand-in (it once printed −22.997); just inside the rim the
+/// answer follows the logarithmic asymptote a_ρ = −2Gσ(ln(8R/d) − 2), σ = M/(πR²).
+#[test]
+fn the_disk_rim_is_refused_and_near_rim_values_follow_the_asymptote() {
+    for at in ["1,0,0", "0,-1,0", "-1,0,0"] {
+        let out = surfgrav(&["potential", "--body", "disk:radius=1,mass=1", "--at", at]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{at}: {err}");
+        assert!(out.stdout.is_empty());
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains("rim") && err.contains("infinite"), "{err}");
+        // The finite potential on the rim, −4GσR = −4/π, is said too.
+        assert!(err.contains("-1.273239"), "{err}");
+    }
+    for (d, quoted) in [(1e-6f64, -8.85), (1e-10, -14.71)] {
+        let at = format!("{},0,0", 1.0 - d);
+        let v = json(&surfgrav(&[
+            "potential",
+            "--body",
+            "disk:radius=1,mass=1",
+            "--at",
+            &at,
+        ]));
+        let ax = v["acceleration"][0].as_f64().unwrap();
+        let d_exact = 1.0 - (1.0 - d);
+        let asymptote = -2.0 / std::f64::consts::PI * ((8.0 / d_exact).ln() - 2.0);
+        assert!(
+            ((ax - asymptote) / asymptote).abs() < 10.0 * d,
+            "{ax} vs {asymptote}"
+        );
+        assert!((ax - quoted).abs() < 5e-3, "{ax} vs {quoted}");
+    }
+}

@@ -45,6 +45,14 @@ fn report_writes_tables_and_figures() {
     ] {
         assert!(md.contains(needle), "REPORT.md lacks `{needle}`");
     }
+    // Nothing a user reads points at the project's issue tracker.
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    for text in [&md[..], &stdout[..]] {
+        assert!(
+            !text.to_lowercase().contains("issue"),
+            "a user-visible text mentions an issue"
+        );
+    }
     // Every image the report links exists.
     for link in md.split("](").skip(1) {
         let target = &link[..link.find(')').unwrap()];
