@@ -1,7 +1,7 @@
 //! Work–precision table of every integrator on the Kepler problem (e = 0.5, 10 orbits), and the
 //! cost of the paper-point scene (RK4, dt = 0.1, t = 300).
 //!
-//! Run with `cargo run --release -p surfgrav-dynamics --example work_precision`.
+//! Run with `cargo run --release -p surfgrav-dynamics --example integrator_work_precision`.
 
 use std::time::Instant;
 use surfgrav_dynamics::{
