@@ -480,7 +480,7 @@ pub fn conservation(run: &RunRecord) -> Figure {
     };
     Figure {
         title: format!(
-            "{}: r_AB, ΔE, ΔJ per step and cumulative ({})",
+            "{}: r_AB, ΔE, ΔJ and their drift ({})",
             run.scene.name,
             integrator_label(run)
         ),
