@@ -30,8 +30,10 @@
 //! touching bodies), so a contact event is located on the table as on the direct path.
 //!
 //! Domain: the fast path is used only where the symmetry test above passes at the start (to
-//! [`ALIGNMENT_SINE`]); otherwise, or when switched off, the direct path is used.
-//! Outside the tabulated range the table returns [`InteractionError::OutsideRange`].
+//! [`ALIGNMENT_SINE`]; the symmetry is then kept by the motion for the whole run); otherwise,
+//! or when switched off, the direct path is used. Outside the tabulated range (an unbound
+//! orbit, a stage beyond the reachable range) the evaluation is handed over to the direct
+//! engine, counted by [`SceneModel::handovers`]: the run never fails for leaving the table.
 //!
 //! # Engine failures
 //!
@@ -551,6 +553,11 @@ pub enum SceneModel {
         inertia: [Option<InertiaTensor>; 2],
         /// Why the pair is central along the whole motion.
         reason: &'static str,
+        /// The direct engine, for separations outside the table (an unbound orbit, an
+        /// integrator's stage beyond the reachable range).
+        direct: Box<EngineModel>,
+        /// Evaluations handed over to `direct` so far.
+        handovers: AtomicUsize,
     },
 }
 
@@ -734,6 +741,8 @@ impl SceneModel {
             report,
             inertia,
             reason,
+            direct: Box::new(direct),
+            handovers: AtomicUsize::new(0),
         })
     }
 
@@ -758,6 +767,39 @@ impl SceneModel {
     }
 }
 
+impl SceneModel {
+    /// Evaluations of the tabulated path that fell outside the table and were computed by the
+    /// direct engine instead (0 on the direct path).
+    pub fn handovers(&self) -> usize {
+        match self {
+            Self::Direct(_) => 0,
+            Self::Interpolated { handovers, .. } => handovers.load(Ordering::Relaxed),
+        }
+    }
+
+    /// `evaluate` on the table, or on the direct engine where the separation lies outside it.
+    fn tabulated_or_direct<T>(
+        &self,
+        evaluate: impl Fn(&dyn InteractionModel) -> Result<T, InteractionError>,
+    ) -> Result<T, InteractionError> {
+        match self {
+            Self::Direct(m) => evaluate(m.as_ref()),
+            Self::Interpolated {
+                table,
+                direct,
+                handovers,
+                ..
+            } => match evaluate(table) {
+                Err(InteractionError::OutsideRange { .. }) => {
+                    handovers.fetch_add(1, Ordering::Relaxed);
+                    evaluate(direct.as_ref())
+                }
+                other => other,
+            },
+        }
+    }
+}
+
 impl InteractionModel for SceneModel {
     fn mass_a(&self) -> Real {
         self.model().mass_a()
@@ -766,10 +808,10 @@ impl InteractionModel for SceneModel {
         self.model().mass_b()
     }
     fn force_on_a(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Vec3, InteractionError> {
-        self.model().force_on_a(pose_a, pose_b)
+        self.tabulated_or_direct(|m| m.force_on_a(pose_a, pose_b))
     }
     fn potential_energy(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Real, InteractionError> {
-        self.model().potential_energy(pose_a, pose_b)
+        self.tabulated_or_direct(|m| m.potential_energy(pose_a, pose_b))
     }
     fn torques(
         &self,
@@ -794,7 +836,15 @@ impl InteractionModel for SceneModel {
         }
     }
     fn wrench(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Wrench, InteractionError> {
-        self.model().wrench(pose_a, pose_b)
+        match self {
+            Self::Direct(m) => m.wrench(pose_a, pose_b),
+            // Central: no torques along this motion.
+            Self::Interpolated { .. } => Ok(Wrench {
+                force_on_a: self.force_on_a(pose_a, pose_b)?,
+                torque_on_a: Vec3::zeros(),
+                torque_on_b: Vec3::zeros(),
+            }),
+        }
     }
     fn motion_path(&self, initial: &TwoBodyState) -> MotionPath {
         match self {

@@ -141,6 +141,19 @@ pub struct ContactEvent {
     pub direction: Vec3,
 }
 
+/// Where and when the bodies escaped each other.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EscapeEvent {
+    /// The first sample beyond the escape distance on a hyperbolic relative orbit.
+    pub sample: Sample,
+    /// Centroid separation there.
+    pub separation: Real,
+    /// The escape distance that was set.
+    pub escape_distance: Real,
+    /// Energy of the relative orbit, $\tfrac12\mu|\dot{\mathbf r}|^2 + V$ (positive).
+    pub orbital_energy: Real,
+}
+
 /// How a run ended.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Termination {
@@ -148,6 +161,58 @@ pub enum Termination {
     Completed,
     /// The bodies touched before the end time.
     Contact(Box<ContactEvent>),
+    /// The relative orbit is unbound and the separation passed the escape distance
+    /// ([`Integrator::set_escape_distance`]).
+    Escape(Box<EscapeEvent>),
+}
+
+impl Termination {
+    /// The time of a stop event (contact or escape), `None` for a completed run.
+    pub fn event_time(&self) -> Option<Real> {
+        match self {
+            Termination::Completed => None,
+            Termination::Contact(event) => Some(event.sample.time),
+            Termination::Escape(event) => Some(event.sample.time),
+        }
+    }
+}
+
+/// The escape test after an accepted step: beyond `distance` with a positive relative-orbit
+/// energy $\tfrac12\mu|\dot{\mathbf r}|^2 + V(\text{poses})$, μ the reduced mass. The energy is
+/// evaluated only beyond the distance (once per step there).
+pub(crate) fn escaped(
+    model: &dyn InteractionModel,
+    distance: Option<Real>,
+    sample: &Sample,
+) -> Option<EscapeEvent> {
+    let distance = distance?;
+    let separation = sample.state.separation();
+    if separation <= distance {
+        return None;
+    }
+    let (ma, mb) = (model.mass_a(), model.mass_b());
+    let reduced = ma * mb / (ma + mb);
+    let v = model
+        .potential_energy(&sample.state.body_a.pose(), &sample.state.body_b.pose())
+        .ok()?;
+    let energy = 0.5 * reduced * sample.state.relative_velocity().norm_squared() + v;
+    (energy > 0.0).then_some(EscapeEvent {
+        sample: *sample,
+        separation,
+        escape_distance: distance,
+        orbital_energy: energy,
+    })
+}
+
+fn check_escape_distance(distance: Option<Real>) -> Result<Option<Real>, DynamicsError> {
+    match distance {
+        Some(d) if !(d.is_finite() && d > 0.0) => Err(DynamicsError::InvalidParameter {
+            name: "escape_distance",
+            requirement: "positive and finite",
+            value: d,
+        }),
+        other => Ok(other),
+    }
 }
 
 /// What a run did.
@@ -169,6 +234,13 @@ pub struct RunSummary {
 pub trait Integrator {
     /// Short name (`rk4`, `leapfrog`, `yoshida4`, `yoshida6`, `yoshida8`, `dopri5`, `dop853`).
     fn name(&self) -> &'static str;
+
+    /// Stops runs with [`Termination::Escape`] once the separation exceeds `distance` on an
+    /// unbound relative orbit (`None`, the default, never stops for escape).
+    ///
+    /// # Errors
+    /// A distance that is not positive and finite.
+    fn set_escape_distance(&mut self, distance: Option<Real>) -> Result<(), DynamicsError>;
 
     /// Integrates from `initial` at `t_start` to `t_end` (> `t_start`). `observer` receives the
     /// initial sample, then the sample at the end of every accepted step (and the contact sample,
@@ -574,6 +646,7 @@ pub struct FixedStep {
     scheme: FixedScheme,
     step: Real,
     weights: Vec<Real>,
+    escape_distance: Option<Real>,
 }
 
 impl FixedStep {
@@ -590,6 +663,7 @@ impl FixedStep {
             scheme,
             step,
             weights: scheme.weights(),
+            escape_distance: None,
         })
     }
 
@@ -715,6 +789,11 @@ impl Integrator for FixedStep {
         self.scheme.name()
     }
 
+    fn set_escape_distance(&mut self, distance: Option<Real>) -> Result<(), DynamicsError> {
+        self.escape_distance = check_escape_distance(distance)?;
+        Ok(())
+    }
+
     fn integrate_with_output(
         &mut self,
         model: &dyn InteractionModel,
@@ -732,8 +811,8 @@ impl Integrator for FixedStep {
                 self.rigid_method(),
                 model,
                 initial,
-                t_start,
-                t_end,
+                (t_start, t_end),
+                self.escape_distance,
                 observer,
                 Some((&mut clock, emit)),
             );
@@ -763,8 +842,8 @@ impl Integrator for FixedStep {
                 self.rigid_method(),
                 model,
                 initial,
-                t_start,
-                t_end,
+                (t_start, t_end),
+                self.escape_distance,
                 observer,
                 None,
             );
@@ -798,6 +877,15 @@ impl Integrator for FixedStep {
                     next.time = target;
                     current = next;
                     observer(&current);
+                    if let Some(event) = escaped(model, self.escape_distance, &current) {
+                        return Ok(RunSummary {
+                            last: current,
+                            steps: k,
+                            rejected_steps: 0,
+                            force_evaluations: dynamics.evaluations,
+                            termination: Termination::Escape(Box::new(event)),
+                        });
+                    }
                 }
                 Trial::Touching => {
                     let event = match self.advance(&mut dynamics, &current, h, 0)? {
@@ -882,6 +970,7 @@ pub struct Adaptive {
     max_step: Real,
     initial_step: Option<Real>,
     max_steps: usize,
+    escape_distance: Option<Real>,
 }
 
 /// The stage derivatives $\mathbf k_i$ of one step: (velocity of A, velocity of B, acceleration
@@ -932,6 +1021,7 @@ impl Adaptive {
             max_step: Real::INFINITY,
             initial_step: None,
             max_steps: 100_000_000,
+            escape_distance: None,
         })
     }
 
@@ -1211,8 +1301,8 @@ impl Adaptive {
                 rigid::Method::Adaptive(settings),
                 model,
                 initial,
-                t_start,
-                t_end,
+                (t_start, t_end),
+                self.escape_distance,
                 observer,
                 output,
             );
@@ -1283,6 +1373,15 @@ impl Adaptive {
                     carry = next_carry;
                     steps += 1;
                     observer(&current);
+                    if let Some(event) = escaped(model, self.escape_distance, &current) {
+                        return Ok(RunSummary {
+                            last: current,
+                            steps,
+                            rejected_steps: rejected,
+                            force_evaluations: dynamics.evaluations,
+                            termination: Termination::Escape(Box::new(event)),
+                        });
+                    }
                     if last {
                         break;
                     }
@@ -1398,6 +1497,11 @@ impl OutputClock {
 impl Integrator for Adaptive {
     fn name(&self) -> &'static str {
         self.pair.name()
+    }
+
+    fn set_escape_distance(&mut self, distance: Option<Real>) -> Result<(), DynamicsError> {
+        self.escape_distance = check_escape_distance(distance)?;
+        Ok(())
     }
 
     fn integrate(

@@ -73,8 +73,8 @@ pub use engine_model::{
     EngineModel, EngineModelError, SceneModel, SceneSettings, TableReport, ALIGNMENT_SINE,
 };
 pub use integrate::{
-    Adaptive, ContactEvent, DynamicsError, EmbeddedPair, FixedScheme, FixedStep, Integrator,
-    RunSummary, Termination,
+    Adaptive, ContactEvent, DynamicsError, EmbeddedPair, EscapeEvent, FixedScheme, FixedStep,
+    Integrator, RunSummary, Termination,
 };
 pub use interpolant::{reachable_separations, InterpolantError, InterpolatedCentralPair};
 pub use model::{CentralPair, InteractionError, InteractionModel, MotionPath, PointMasses, Wrench};

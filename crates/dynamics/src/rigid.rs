@@ -60,7 +60,8 @@
 //! their values and derivatives at both ends (local error $O(h^4)$). Quaternions are normalised.
 
 use crate::integrate::{
-    check_span, ContactEvent, DynamicsError, FixedScheme, OutputClock, RunSummary, Termination,
+    check_span, escaped, ContactEvent, DynamicsError, FixedScheme, OutputClock, RunSummary,
+    Termination,
 };
 use crate::interpolate::hermite_quintic;
 use crate::model::{InteractionError, InteractionModel, Wrench};
@@ -815,8 +816,8 @@ pub(crate) fn integrate(
     method: Method<'_>,
     model: &dyn InteractionModel,
     initial: &TwoBodyState,
-    t_start: Real,
-    t_end: Real,
+    (t_start, t_end): (Real, Real),
+    escape_distance: Option<Real>,
     observer: &mut dyn FnMut(&Sample),
     mut output: Emit<'_>,
 ) -> Result<RunSummary, DynamicsError> {
@@ -870,7 +871,12 @@ pub(crate) fn integrate(
                         next.time = target;
                         system.emit_between(&current, &next, None, &mut output);
                         current = next;
-                        observer(&system.sample(&current));
+                        let sample = system.sample(&current);
+                        observer(&sample);
+                        if let Some(event) = escaped(model, escape_distance, &sample) {
+                            let termination = Termination::Escape(Box::new(event));
+                            return Ok(finish(&system, &current, k, 0, termination));
+                        }
                     }
                     Advance::Contact(p) => {
                         system.emit_between(&current, &p, None, &mut output);
@@ -949,7 +955,12 @@ pub(crate) fn integrate(
                         }
                         current = next;
                         steps += 1;
-                        observer(&system.sample(&current));
+                        let sample = system.sample(&current);
+                        observer(&sample);
+                        if let Some(event) = escaped(model, escape_distance, &sample) {
+                            let termination = Termination::Escape(Box::new(event));
+                            return Ok(finish(&system, &current, steps, rejected, termination));
+                        }
                         if last {
                             break;
                         }

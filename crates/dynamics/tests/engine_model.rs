@@ -416,3 +416,57 @@ fn stage_force_is_the_full_evaluations_force() {
     }
     assert_eq!(model.engine_calls(), 6);
 }
+
+/// An unbound flyby of the paper's spheroids (v = ±2): the table covers what the energy and
+/// angular momentum allow up to 100 initial separations; the orbit leaves it and the direct
+/// engine takes over by itself (the issue's run died at t = 178 with "outside the tabulated
+/// range"). The run completes and agrees with the direct path; with an escape distance it
+/// stops with a typed escape event instead, and a bound orbit past the same distance does not.
+#[test]
+fn unbound_orbit_leaves_the_table_and_escapes() {
+    let mut initial = paper_2s_initial();
+    initial.body_a.velocity = Vec3::new(0.0, 2.0, 0.0);
+    initial.body_b.velocity = Vec3::new(0.0, -2.0, 0.0);
+    let build = |interpolate| {
+        let settings = SceneSettings {
+            interpolate,
+            ..SceneSettings::default()
+        };
+        SceneModel::build(spheroid(), spheroid(), &initial, &settings).unwrap()
+    };
+    let (table, direct) = (build(true), build(false));
+    assert!(table.is_interpolated());
+    let run = |model: &SceneModel, escape: Option<Real>| {
+        let mut rk4 = FixedStep::new(FixedScheme::RungeKutta4, 0.5).unwrap();
+        rk4.set_escape_distance(escape).unwrap();
+        rk4.integrate(model, &initial, 0.0, 200.0, &mut |_| {})
+            .unwrap()
+    };
+    let (a, b) = (run(&table, None), run(&direct, None));
+    assert_eq!(a.termination, Termination::Completed);
+    assert!(table.handovers() > 0);
+    let separation = a.last.state.separation();
+    assert!(separation > 700.0, "{separation}");
+    // The table is exact to 2e-14 and the engine to 1e-12: the orbits agree far below 1e-9.
+    let difference = (separation - b.last.state.separation()).abs() / separation;
+    println!(
+        "handovers {}, separation {separation}, difference {difference:e}",
+        table.handovers()
+    );
+    assert!(difference < 1e-9, "{difference:e}");
+    let escaped = run(&table, Some(50.0));
+    let Termination::Escape(event) = &escaped.termination else {
+        panic!("expected an escape, got {:?}", escaped.termination);
+    };
+    assert!(event.separation > 50.0 && event.separation < 60.0);
+    assert!(event.orbital_energy > 0.0 && event.sample.time < 200.0);
+    // Bound: paper-2s swings out to 7 apart; an escape distance of 5 is passed, never escaped.
+    let bound = scene(true);
+    let mut rk4 = FixedStep::new(FixedScheme::RungeKutta4, 0.1).unwrap();
+    rk4.set_escape_distance(Some(5.0)).unwrap();
+    let s = rk4
+        .integrate(&bound, &paper_2s_initial(), 0.0, 100.0, &mut |_| {})
+        .unwrap();
+    assert_eq!(s.termination, Termination::Completed);
+    assert!(rk4.set_escape_distance(Some(-1.0)).is_err());
+}

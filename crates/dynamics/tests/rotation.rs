@@ -688,3 +688,22 @@ fn rotational_snapshot_counts() {
 
 /// Measured when the rotational path was written (steps, rejected, evaluations).
 const SNAPSHOT_DOP853: (usize, usize, usize) = (91, 0, 1093);
+
+/// The rotational path stops for escape too: the spin–orbit scene thrown out at three times
+/// the escape speed, escape distance 30.
+#[test]
+fn rotational_path_stops_for_escape() {
+    let (model, mut start, period) = spin_orbit();
+    for b in [&mut start.body_a, &mut start.body_b] {
+        b.velocity *= 3.0 * 2f64.sqrt();
+    }
+    let mut integrator = FixedStep::new(FixedScheme::Yoshida4, period / 100.0).unwrap();
+    integrator.set_escape_distance(Some(30.0)).unwrap();
+    let summary = integrator
+        .integrate(&model, &start, 0.0, 100.0 * period, &mut |_| {})
+        .unwrap();
+    let surfgrav_dynamics::Termination::Escape(event) = summary.termination else {
+        panic!("no escape: {:?}", summary.termination);
+    };
+    assert!(event.separation > 30.0 && event.orbital_energy > 0.0);
+}

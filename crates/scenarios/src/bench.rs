@@ -773,6 +773,7 @@ fn run_one(
     let termination = match &summary.termination {
         Termination::Completed => "completed".to_string(),
         Termination::Contact(c) => format!("contact at t = {:.3}", c.sample.time),
+        Termination::Escape(e) => format!("escape at t = {:.3}", e.sample.time),
     };
     let (energy_error, trajectory_error, final_relative) = if completed {
         let mut monitor = ConservationMonitor::new(model);

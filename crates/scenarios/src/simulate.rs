@@ -190,8 +190,16 @@ impl RunRecord {
     /// Whether the bodies touched before the end.
     pub fn contact(&self) -> Option<Real> {
         match &self.summary.termination {
-            Termination::Completed => None,
             Termination::Contact(event) => Some(event.sample.time),
+            Termination::Completed | Termination::Escape(_) => None,
+        }
+    }
+
+    /// Whether the bodies escaped each other (an unbound orbit past the escape distance).
+    pub fn escape(&self) -> Option<Real> {
+        match &self.summary.termination {
+            Termination::Escape(event) => Some(event.sample.time),
+            Termination::Completed | Termination::Contact(_) => None,
         }
     }
 }
