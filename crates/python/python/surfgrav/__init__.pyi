@@ -1,0 +1,158 @@
+"""Type stubs of the surfgrav package (the compiled module surfgrav._surfgrav)."""
+
+from typing import Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+FloatArray = npt.NDArray[np.float64]
+#: Three numbers (a tuple, list or (3,) float64 array).
+Vector = Union[Sequence[float], FloatArray]
+#: A rotation vector (3 numbers, axis × angle in radians) or a unit quaternion (w, x, y, z).
+Orientation = Union[Sequence[float], FloatArray]
+
+class InputError(ValueError):
+    """Bad input; the message is the command line's one-line message."""
+
+class RunError(RuntimeError):
+    """A run that started and then failed."""
+
+class InternalError(RuntimeError):
+    """A bug in surfgrav (a Rust panic, caught)."""
+
+class Body:
+    """A homogeneous body (build a Sphere, Spheroid, Ellipsoid, Disk or PointMass)."""
+
+    @property
+    def mass(self) -> float: ...
+    @property
+    def G(self) -> float: ...
+    @property
+    def density(self) -> Optional[float]: ...
+    @property
+    def volume(self) -> float: ...
+    @property
+    def bounding_radius(self) -> float: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def spec(self) -> str: ...
+    def field(self, points: FloatArray) -> Tuple[FloatArray, FloatArray]:
+        """Φ (N,) and a = −∇Φ (N, 3) at an (N, 3) float64 array of body-frame points."""
+    def inertia(self) -> Optional[FloatArray]:
+        """The (3, 3) inertia tensor about the centroid, body frame; None for a point mass."""
+
+class PointMass(Body):
+    def __init__(self, mass: float, *, G: float = 1.0) -> None: ...
+
+class Sphere(Body):
+    def __init__(
+        self,
+        radius: float,
+        mass: Optional[float] = None,
+        *,
+        density: Optional[float] = None,
+        G: float = 1.0,
+    ) -> None: ...
+    @property
+    def radius(self) -> float: ...
+
+class Spheroid(Body):
+    def __init__(
+        self,
+        equatorial_radius: float,
+        polar_radius: float,
+        mass: Optional[float] = None,
+        *,
+        density: Optional[float] = None,
+        G: float = 1.0,
+    ) -> None: ...
+    @property
+    def equatorial_radius(self) -> float: ...
+    @property
+    def polar_radius(self) -> float: ...
+
+class Ellipsoid(Body):
+    def __init__(
+        self,
+        semi_axes: Optional[Vector] = None,
+        mass: Optional[float] = None,
+        *,
+        a: Optional[float] = None,
+        b: Optional[float] = None,
+        c: Optional[float] = None,
+        density: Optional[float] = None,
+        G: float = 1.0,
+    ) -> None: ...
+    @property
+    def semi_axes(self) -> Tuple[float, float, float]: ...
+
+class Disk(Body):
+    def __init__(self, radius: float, mass: float, *, G: float = 1.0) -> None: ...
+    @property
+    def radius(self) -> float: ...
+
+class Interaction:
+    """Force, torques (about each centroid) and mutual energy; world frame."""
+
+    @property
+    def force_on_a(self) -> FloatArray: ...
+    @property
+    def force_on_b(self) -> FloatArray: ...
+    @property
+    def torque_on_a(self) -> FloatArray: ...
+    @property
+    def torque_on_b(self) -> FloatArray: ...
+    @property
+    def potential_energy(self) -> float: ...
+    @property
+    def method(self) -> str: ...
+    @property
+    def evaluations(self) -> int: ...
+    @property
+    def error_estimate(self) -> float: ...
+    def to_dict(self) -> dict:
+        """The keys and values of `surfgrav interact`'s JSON."""
+
+class BatchInteraction:
+    """One row per pose: (N, 3) forces and torques, (N,) energies, evaluations, errors."""
+
+    @property
+    def force_on_a(self) -> FloatArray: ...
+    @property
+    def force_on_b(self) -> FloatArray: ...
+    @property
+    def torque_on_a(self) -> FloatArray: ...
+    @property
+    def torque_on_b(self) -> FloatArray: ...
+    @property
+    def potential_energy(self) -> FloatArray: ...
+    @property
+    def evaluations(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def error_estimate(self) -> FloatArray: ...
+    @property
+    def method(self) -> Tuple[str, ...]: ...
+    def __len__(self) -> int: ...
+
+def interact(
+    a: Body,
+    b: Body,
+    position: Vector,
+    orientation_a: Optional[Orientation] = None,
+    orientation_b: Optional[Orientation] = None,
+    tolerance: float = 1e-12,
+) -> Interaction:
+    """A at the origin, B at `position`; orientations body → world."""
+
+def interact_batch(
+    a: Body,
+    b: Body,
+    positions: FloatArray,
+    orientations_a: Optional[Union[Orientation, FloatArray]] = None,
+    orientations_b: Optional[Union[Orientation, FloatArray]] = None,
+    tolerance: float = 1e-12,
+) -> BatchInteraction:
+    """interact for an (N, 3) array of positions, with (N, 3)/(N, 4) or shared orientations."""

@@ -1,0 +1,38 @@
+//! Python bindings of surfgrav: the extension module `surfgrav._surfgrav`, re-exported by the
+//! `surfgrav` package (`python/surfgrav/__init__.py`; stubs in `__init__.pyi`).
+//!
+//! - bodies ([`bodies`]): `Sphere`, `Spheroid`, `Ellipsoid`, `Disk`, `PointMass`, with
+//!   `field(points)` over an (N, 3) array, in parallel;
+//! - interactions ([`interaction`]): `interact` and `interact_batch`;
+//!
+//! Conventions are the workspace's (README): Φ < 0, a = −∇Φ, V < 0, orientations body → world.
+//! Computation runs with the GIL released; errors are Python exceptions ([`errors`]), never a
+//! panic across the FFI boundary.
+
+use pyo3::prelude::*;
+
+mod arrays;
+mod bodies;
+mod errors;
+mod interaction;
+
+/// The compiled part of the `surfgrav` package.
+#[pymodule]
+fn _surfgrav(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("InputError", py.get_type::<errors::InputError>())?;
+    m.add("RunError", py.get_type::<errors::RunError>())?;
+    m.add("InternalError", py.get_type::<errors::InternalError>())?;
+    m.add_class::<bodies::Body>()?;
+    m.add_class::<bodies::PointMass>()?;
+    m.add_class::<bodies::Sphere>()?;
+    m.add_class::<bodies::Spheroid>()?;
+    m.add_class::<bodies::Ellipsoid>()?;
+    m.add_class::<bodies::Disk>()?;
+    m.add_class::<interaction::Interaction>()?;
+    m.add_class::<interaction::BatchInteraction>()?;
+    m.add_function(wrap_pyfunction!(interaction::interact, m)?)?;
+    m.add_function(wrap_pyfunction!(interaction::interact_batch, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}
