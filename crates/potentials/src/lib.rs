@@ -1,4 +1,5 @@
-//! Closed-form gravitational fields of homogeneous bodies.
+//! Closed-form gravitational fields of homogeneous bodies, including polyhedra (triangle
+//! meshes of real asteroids, [`Polyhedron`]).
 //!
 //! # Conventions
 //!
@@ -35,6 +36,7 @@ pub mod ellipsoid;
 pub mod elliptic;
 pub mod inertia;
 pub mod point_mass;
+pub mod polyhedron;
 pub mod sphere;
 pub mod spheroid;
 pub mod tolerance;
@@ -46,6 +48,7 @@ pub use ellipsoid::*;
 pub use error::BodyError;
 pub use inertia::{InertiaError, InertiaTensor, Mat3};
 pub use point_mass::*;
+pub use polyhedron::{LengthUnit, Mesh, MeshError, Polyhedron, PolyhedronError, PrincipalFrame};
 pub use sphere::*;
 pub use spheroid::*;
 
