@@ -416,6 +416,11 @@ impl Potential for Polyhedron {
         self.bounding_radius
     }
 
+    /// [`Polyhedron::inertia_tensor`], validated (about the centroid, body frame).
+    fn inertia(&self) -> Option<crate::InertiaTensor> {
+        crate::InertiaTensor::new(self.inertia_tensor()).ok()
+    }
+
     fn region(&self, r: &Vec3) -> Region {
         let scale = self.bounding_radius.max(r.norm());
         if self.distance_to_surface(r) <= 8.0 * Real::EPSILON * scale {

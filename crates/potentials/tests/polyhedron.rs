@@ -150,6 +150,8 @@ fn fahnestock_octahedra_mass_properties() {
                 i[(k, k)]
             );
         }
+        // The trait's validated tensor is the same.
+        assert_eq!(*body.inertia().unwrap().tensor(), body.inertia_tensor());
         // Principal axes: off-diagonal products vanish to rounding.
         assert!((i - Matrix3::from_diagonal(&i.diagonal())).norm() < 1e-12 * i.norm());
         assert!(body.centroid().norm() < 1e-15);
