@@ -560,3 +560,69 @@ fn batch_matches_single_evaluations() {
         assert_eq!(*f, body.field(p));
     }
 }
+
+/// The gravity-gradient tensor: central differences of the acceleration (inside, near the
+/// surface, across the switch to the expansion), its trace (0 outside, −4πGρ inside), and the
+/// direct sum against the certified expansion at the switch.
+#[test]
+fn gravity_gradient_tensor() {
+    use surfgrav_potentials::polyhedron::GRADIENT_FAR_FIELD_RADII;
+    let body = Polyhedron::with_density(&kw4_beta(), 2810.0)
+        .unwrap()
+        .with_gravitational_constant(6.6743e-11)
+        .unwrap();
+    let radius = body.circumscribing_radius();
+    let c = body.centroid();
+    let rho_g = 6.6743e-11 * 2810.0;
+    let dir = Vec3::new(0.36, -0.48, 0.8);
+    for k in [0.05, 0.2, 1.3, 3.0, 12.9, 13.1, 100.0] {
+        let p = c + dir * (k * radius);
+        let t = body.gravity_gradient(&p);
+        // Fourth-order differences with h = 1e-4 R: truncation (h/d)⁴ ≲ 1e-12, cancellation
+        // ε|a|/h ≲ 1e-11 of |T| R/|a| ~ 1.
+        let h = 1e-4 * radius * k.max(1.0);
+        let mut worst: f64 = 0.0;
+        for b in 0..3 {
+            let e = Vec3::ith(b, h);
+            let d = |s: f64| body.acceleration(&(p + e * s));
+            let fd = (d(-2.0) - d(2.0) + (d(1.0) - d(-1.0)) * 8.0) / (12.0 * h);
+            for a in 0..3 {
+                worst = worst.max((fd[a] - t[(a, b)]).abs() / t.norm());
+            }
+        }
+        let region = body.region(&p);
+        let trace = if region == Region::Inside {
+            -4.0 * PI * rho_g
+        } else {
+            0.0
+        };
+        let e_trace = (t.trace() - trace).abs() / t.norm();
+        println!("gradient at {k:>5} radii ({region:?}): vs differences {worst:.1e}, trace {e_trace:.1e}");
+        assert!(worst < 1e-8, "{k}: {worst:e}");
+        assert!(e_trace < 1e-13, "{k}: trace off by {e_trace:e}");
+        assert_eq!(t, t.transpose());
+    }
+    for (name, body) in [
+        ("KW4 Beta", body.clone()),
+        (
+            "KW4 Alpha",
+            Polyhedron::with_density(&kw4_alpha(), 1970.0).unwrap(),
+        ),
+        (
+            "Didymos",
+            Polyhedron::with_density(&didymos(), 2104.0).unwrap(),
+        ),
+    ] {
+        let (c, radius) = (body.centroid(), body.circumscribing_radius());
+        let at = |k: f64| body.gravity_gradient(&(c + dir.normalize() * (k * radius)));
+        let (a, b) = (
+            at(GRADIENT_FAR_FIELD_RADII * (1.0 - 1e-15)),
+            at(GRADIENT_FAR_FIELD_RADII * (1.0 + 1e-15)),
+        );
+        let jump = (a - b).norm() / b.norm();
+        println!(
+            "gradient, {name}: direct vs expansion at the switch ({GRADIENT_FAR_FIELD_RADII} radii): {jump:.1e}"
+        );
+        assert!(jump < POLYHEDRON_REL);
+    }
+}

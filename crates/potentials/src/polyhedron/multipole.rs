@@ -284,6 +284,82 @@ pub(crate) fn volume_moments(
     out
 }
 
+impl Multipole {
+    /// Hessian of Σ (Φ = −G Σ) at body-frame `p` to `degree`: the gravity-gradient tensor is
+    /// G times it. Second derivatives by applying the derivative relations twice, with
+    /// $I_n^{-m} = \overline{I_n^m}$.
+    pub fn hessian(&self, p: &Vec3, degree: usize) -> nalgebra::Matrix3<Real> {
+        let x = (p - self.centre) / self.radius;
+        let mut irr = vec![C64::new(0.0, 0.0); count(degree + 2)];
+        irregular(&x, degree + 2, &mut irr);
+        let get = |n: usize, m: i64| {
+            if m >= 0 {
+                irr[index(n, m as usize)]
+            } else {
+                irr[index(n, (-m) as usize)].conj()
+            }
+        };
+        let mut h = nalgebra::Matrix3::zeros();
+        for n in 0..=degree {
+            for m in 0..=n {
+                let w = if m == 0 { 1.0 } else { 2.0 };
+                let mc = self.moments[index(n, m)].conj() * w;
+                for a in 0..3 {
+                    for b in a..3 {
+                        let mut value = C64::new(0.0, 0.0);
+                        for (c1, m1) in derivative(a, m as i64) {
+                            for (c2, m2) in derivative(b, m1) {
+                                value += c1 * c2 * get(n + 2, m2);
+                            }
+                        }
+                        let v = (mc * value).re;
+                        h[(a, b)] += v;
+                        if a != b {
+                            h[(b, a)] += v;
+                        }
+                    }
+                }
+            }
+        }
+        h / self.radius.powi(3)
+    }
+}
+
+/// ∂_axis I_n^m as a combination of I_{n+1}^{m'} (any sign of m): z: −I^m; x and y from
+/// ∂_± (∂_+ I^m = ∓I^{m+1} for m ≥ 0 / m < 0, ∂_− I^m = ±I^{m−1} for m ≥ 1 / m ≤ 0).
+fn derivative(axis: usize, m: i64) -> Vec<(C64, i64)> {
+    let plus = if m >= 0 { -1.0 } else { 1.0 };
+    let minus = if m >= 1 { 1.0 } else { -1.0 };
+    match axis {
+        0 => vec![
+            (C64::new(plus / 2.0, 0.0), m + 1),
+            (C64::new(minus / 2.0, 0.0), m - 1),
+        ],
+        // 1/(2i) = −i/2.
+        1 => vec![
+            (C64::new(0.0, -plus / 2.0), m + 1),
+            (C64::new(0.0, minus / 2.0), m - 1),
+        ],
+        _ => vec![(C64::new(-1.0, 0.0), m)],
+    }
+}
+
+/// Relative truncation bound of the Hessian at `q = R/r`, against the tidal scale GM/r³, by
+/// Cauchy's estimates for harmonic functions on the ball B(p, ρ), ρ = (r − R)/2:
+/// |∂_i∂_j u(p)| ≤ 36/ρ² sup_B |u| (the gradient estimate |∇u| ≤ 3/ρ′ sup|u| applied twice on
+/// radius ρ/2), spectral norm ≤ 3 max entry, and sup_B |T_N| ≤ GM/r′ q′^{N+1}/(1 − q′) with
+/// r′ = r − ρ, q′ = R/r′.
+pub(crate) fn hessian_relative_bound(q: Real, degree: usize) -> Real {
+    if q.is_nan() || q >= 1.0 {
+        return Real::INFINITY;
+    }
+    // Lengths in units of r.
+    let rho = (1.0 - q) / 2.0;
+    let r1 = 1.0 - rho;
+    let q1 = q / r1;
+    108.0 / (rho * rho * r1) * q1.powi(degree as i32 + 1) / (1.0 - q1)
+}
+
 /// The truncation bounds of the module docs, relative to the lower bounds of |Φ| and |a|.
 pub(crate) fn relative_bounds(q: Real, degree: usize) -> (Real, Real) {
     let n = degree as Real;
@@ -428,6 +504,34 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The Hessian by the derivative relations against central differences of the gradient.
+    #[test]
+    fn hessian_matches_differences_of_the_gradient() {
+        let mesh = crate::Mesh::ellipsoid(1.0, 0.7, 0.4, 1);
+        let faces: Vec<[u32; 3]> = mesh.faces.iter().map(|f| f.map(|i| i as u32)).collect();
+        let mp = Multipole::new(&mesh.vertices, &faces, 1.0, Vec3::zeros(), 1.0, 10);
+        let p = Vec3::new(2.1, -1.3, 1.7);
+        let h = mp.hessian(&p, 10);
+        let mut scratch = Vec::new();
+        let step = 1e-5;
+        for b in 0..3 {
+            let e = Vec3::ith(b, step);
+            let gp = mp.evaluate(&(p + e), 10, &mut scratch).1;
+            let gm = mp.evaluate(&(p - e), 10, &mut scratch).1;
+            let fd = (gp - gm) / (2.0 * step);
+            for a in 0..3 {
+                assert!(
+                    (fd[a] - h[(a, b)]).abs() < 1e-8 * h.norm(),
+                    "H[{a}{b}] = {}, difference {}",
+                    h[(a, b)],
+                    fd[a]
+                );
+            }
+        }
+        // Laplace: the trace vanishes outside.
+        assert!(h.trace().abs() < 1e-14 * h.norm());
     }
 
     #[test]
