@@ -24,7 +24,9 @@
 //! Numerical policy: every formula keeps full double precision (≤ 1e-14 relative in Φ,
 //! ≤ 1e-13 in the acceleration, outside the body) over shapes from c/a = 1e-4 to 1e4, out to
 //! 1e8 body radii and at SI magnitudes; the tests in `tests/` prove it against committed
-//! high-precision reference values.
+//! high-precision reference values. A [`Polyhedron`] sums thousands of face terms and is held
+//! to 1e-13 relative in Φ and the acceleration, from on its surface to 1e6 radii and inside
+//! ([`tolerance::POLYHEDRON_REL`]; measured ≤ 3.3e-15 on the cube).
 
 mod body;
 mod error;

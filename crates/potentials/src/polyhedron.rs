@@ -495,7 +495,13 @@ impl Potential for Polyhedron {
     }
 
     fn field(&self, r: &Vec3) -> Field {
-        let far = (r - self.centroid).norm() >= FAR_FIELD_RADII * self.circumscribing_radius;
+        let offset = r - self.centroid;
+        // Beyond 1e20 radii the quadrupole is below 1e-40 of the monopole: a point mass at the
+        // centroid (which also keeps r² from overflowing in the expansion).
+        if offset.norm() > 1e20 * self.circumscribing_radius {
+            return crate::point_mass::kepler_field(self.gravitational_parameter(), &offset);
+        }
+        let far = offset.norm() >= FAR_FIELD_RADII * self.circumscribing_radius;
         if far || r.iter().any(|x| !x.is_finite()) {
             let mp = self.multipole();
             let distance = (r - mp.centre).norm() / mp.radius;

@@ -371,7 +371,15 @@ fn far_field_direct_sum_and_expansion() {
             if k == FAR_FIELD_RADII {
                 assert!(e_phi < POLYHEDRON_REL && e_a < POLYHEDRON_REL, "{name} {k}");
             }
-            // Far away: the expansion tends to the point mass, to rounding.
+            // Far away: the expansion tends to the point mass, to rounding; and beyond 1e20
+            // radii the field is the point mass's without overflow.
+            let huge = body.centroid() + dir * (1e200 * radius);
+            let f = body.field(&huge);
+            let kepler = -body.gravitational_parameter() / (1e200 * radius);
+            assert!(
+                rel(f.potential, kepler) < 1e-14,
+                "{name} at 1e200 radii: {f:?}"
+            );
             if k >= 1e6 {
                 let r = p - body.centroid();
                 let kepler = -body.gravitational_parameter() / r.norm();
@@ -555,6 +563,9 @@ fn batch_matches_single_evaluations() {
             Vec3::new((7.0 * t).cos(), (7.0 * t).sin(), 2.0 * t - 1.0) * r * (0.3 + 20.0 * t)
         })
         .collect();
+    // A NaN travels as a NaN, not as a value.
+    let nan = body.field(&Vec3::new(f64::NAN, 0.0, 0.0));
+    assert!(nan.potential.is_nan() && nan.acceleration.iter().all(|x| x.is_nan()));
     let batch = body.fields(&points);
     for (p, f) in points.iter().zip(&batch) {
         assert_eq!(*f, body.field(p));
