@@ -11,7 +11,8 @@
 //!   `xb, yb, zb`, `vxa, vya, vza`, `vxb, vyb, vzb` (world frame), `separation`, `energy`
 //!   ($E = T + V$), `angular_momentum` ($|\mathbf J|$ about the origin); shortest round-trip
 //!   decimal form. Streamed as the run goes ([`TrajectoryWriter`]); which samples are written
-//!   follows [`OutputPlan::of`] (by default at most [`DEFAULT_MAX_ROWS`] rows).
+//!   follows [`OutputPlan::of`] (by default at most [`DEFAULT_MAX_ROWS`] rows, or
+//!   [`DEFAULT_MAX_ADAPTIVE_ROWS`] for adaptive methods).
 //! - `summary.json`: see [`Summary`].
 //! - figures as PNG and SVG (see [`crate::figures`]).
 
@@ -139,8 +140,15 @@ impl Summary {
     }
 }
 
-/// Most rows the default output cadence writes (about 3 MB of CSV), plus the last state.
+/// Most rows the default output cadence writes for a fixed-step method (about 3 MB of CSV),
+/// plus the last state. Its rows are the integrator's own samples, whose energies the
+/// diagnostics compute anyway.
 pub const DEFAULT_MAX_ROWS: usize = 10_000;
+
+/// Most rows the default output cadence writes for an adaptive method, plus the last state:
+/// each row is a dense-output state whose energy costs one more interaction (with the direct
+/// surface integral ~0.2 ms: 2,000 rows add ~0.4 s, 10,000 would add ~1.7 s to a 0.3 s run).
+pub const DEFAULT_MAX_ADAPTIVE_ROWS: usize = 2_000;
 
 /// Which samples become rows of `trajectory.csv`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -164,7 +172,8 @@ impl OutputPlan {
     /// The scene's `[output] every` or `interval`; by default, for a fixed step h over a span
     /// T, every $\lceil (T/h) / 10^4 \rceil$-th step (every step when there are at most
     /// [`DEFAULT_MAX_ROWS`]), and for an adaptive method the dense output at the smallest
-    /// interval of the form 1, 2 or 5 × 10^k that gives at most [`DEFAULT_MAX_ROWS`] rows.
+    /// interval of the form 1, 2 or 5 × 10^k that gives at most [`DEFAULT_MAX_ADAPTIVE_ROWS`]
+    /// rows.
     pub fn of(scene: &Scene) -> Self {
         let span = scene.t_end - scene.t_start;
         let max_rows = DEFAULT_MAX_ROWS as Real;
@@ -184,9 +193,9 @@ impl OutputPlan {
                         // Saturates for absurd step counts; at least every step.
                         Cadence::Every(((steps / max_rows).ceil() as usize).max(1))
                     }
-                    IntegratorChoice::Adaptive { .. } => {
-                        Cadence::Interval(round_up_to_1_2_5(span / max_rows))
-                    }
+                    IntegratorChoice::Adaptive { .. } => Cadence::Interval(round_up_to_1_2_5(
+                        span / DEFAULT_MAX_ADAPTIVE_ROWS as Real,
+                    )),
                 },
                 by_default: true,
             },
@@ -204,8 +213,12 @@ impl OutputPlan {
             ),
         };
         if self.by_default {
+            let most = match self.cadence {
+                Cadence::Every(_) => DEFAULT_MAX_ROWS,
+                Cadence::Interval(_) => DEFAULT_MAX_ADAPTIVE_ROWS,
+            };
             format!(
-                "{what} and the last state (default: at most {DEFAULT_MAX_ROWS} rows; set [output] every or interval to change it); diagnostics use every step"
+                "{what} and the last state (default: at most {most} rows; set [output] every or interval to change it); diagnostics use every step"
             )
         } else {
             format!("{what} and the last state ([output] of the scene); diagnostics use every step")
@@ -509,6 +522,38 @@ impl Drop for Staging {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::presets;
+    use crate::scene::IntegratorName;
+
+    #[test]
+    fn default_cadence_is_proportionate_and_round() {
+        for (x, rounded) in [
+            (0.03, 0.05),
+            (0.05, 0.05),
+            (0.011, 0.02),
+            (7.0, 10.0),
+            (1e-7, 1e-7),
+        ] {
+            assert_eq!(round_up_to_1_2_5(x), rounded, "{x}");
+        }
+        let mut scene = presets::find("paper-2s").unwrap().scene().unwrap();
+        // 3,000 steps: every step.
+        assert_eq!(OutputPlan::of(&scene).cadence, Cadence::Every(1));
+        // 10⁶ steps: one in 100, 10,000 rows.
+        scene.override_with(Some(1e5), None, None, None).unwrap();
+        assert_eq!(OutputPlan::of(&scene).cadence, Cadence::Every(100));
+        // Adaptive over 300: 300/2,000 = 0.15, rounded up to 0.2 (1,501 rows).
+        scene
+            .override_with(Some(300.0), None, Some(IntegratorName::Dop853), Some(1e-10))
+            .unwrap();
+        let plan = OutputPlan::of(&scene);
+        assert_eq!(plan.cadence, Cadence::Interval(0.2));
+        assert!(plan.by_default && plan.rule().contains("at most 2000 rows"));
+        // The scene's own choice is kept.
+        scene.output = OutputCadence::Every(7);
+        assert_eq!(OutputPlan::of(&scene).cadence, Cadence::Every(7));
+        assert!(!OutputPlan::of(&scene).by_default);
+    }
 
     /// A killed run's partial folder (its process gone) is removed by the next run to the same
     /// name; a live process's (PID 1) and other names' are kept.

@@ -33,7 +33,8 @@
 //! [output]           # optional
 //! every = 1          # write every n-th step to trajectory.csv (the last one always), or
 //! # interval = 0.5   # the states at t_start + k·interval from the dense output (and the last)
-//! # neither: every step up to 10,000 rows, else a cadence that keeps about 10,000
+//! # neither: every step up to 10,000 rows, else a cadence that keeps about 10,000 (adaptive
+//! # methods: the dense output at a round interval giving at most 2,000 rows)
 //! figures = ["orbits", "conservation", "histograms"]   # the paper's Figs. 2, 3, 4
 //! ```
 //!
@@ -260,7 +261,9 @@ pub struct SceneFile {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum OutputCadence {
     /// Chosen from the run's length ([`crate::output::OutputPlan::of`]): every step up to
-    /// [`crate::output::DEFAULT_MAX_ROWS`] rows, fewer evenly spaced ones beyond.
+    /// [`crate::output::DEFAULT_MAX_ROWS`] rows, fewer evenly spaced ones beyond; the dense
+    /// output at a round interval giving at most [`crate::output::DEFAULT_MAX_ADAPTIVE_ROWS`]
+    /// rows for adaptive methods.
     Default,
     /// Every n-th step (and the last).
     Every(usize),
