@@ -20,6 +20,7 @@
 //! - [`run`]: integrate and gather every diagnostic in one call.
 //! - [`tolerance`]: the accuracy requirements the tests hold this crate to.
 //!
+//! - [`spin`]: spin rates, obliquities, libration and the mutual orbit's osculating elements.
 //! - [`rigid`]: the full two-body problem, translation and rotation in 3-D (Euler's equations,
 //!   the geometric splitting of Dullweber, Leimkuhler & McLachlan, Runge–Kutta on the full state).
 //!
@@ -60,6 +61,7 @@ pub mod model;
 pub mod orbit;
 pub mod rigid;
 pub mod run;
+pub mod spin;
 pub mod state;
 mod tableau;
 pub mod tolerance;
@@ -80,4 +82,8 @@ pub use interpolant::{reachable_separations, InterpolantError, InterpolatedCentr
 pub use model::{CentralPair, InteractionError, InteractionModel, MotionPath, PointMasses, Wrench};
 pub use orbit::{Apsis, OrbitAnalyser, OrbitReport};
 pub use run::{run_with_diagnostics, RunReport};
+pub use spin::{
+    osculating_elements, BodySpinReport, Elements, OrbitElementsReport, Range, SpinOrbitAnalyser,
+    SpinOrbitReport,
+};
 pub use state::{BodyState, Sample, TwoBodyState};

@@ -707,3 +707,90 @@ fn rotational_path_stops_for_escape() {
     };
     assert!(event.separation > 30.0 && event.orbital_energy > 0.0);
 }
+
+/// The spin–orbit analyser on the libration scene: the libration period it reports is the
+/// classical one (to the O((a/r)²) of the libration test), the synchronous spin's obliquity is
+/// 0, and the orbit's osculating elements stay circular and in the reference plane.
+#[test]
+fn spin_orbit_analyser_reports_libration_and_elements() {
+    let (a, b, c) = (0.1, 0.07, 0.05);
+    let (m_a, m_b, r): (Real, Real, Real) = (1.0, 1e-3, 10.0);
+    let model = engine(
+        Body::sphere(Sphere::new(1.0, m_a).unwrap()).unwrap(),
+        Body::ellipsoid(Ellipsoid::new(a, b, c, m_b).unwrap()).unwrap(),
+        1e-13,
+    );
+    let f = model
+        .force_on_a(
+            &Pose::identity(),
+            &Pose::new(Vec3::new(r, 0.0, 0.0), Vec3::zeros()),
+        )
+        .unwrap();
+    let n = (f.x * (1.0 / m_a + 1.0 / m_b) / r).sqrt();
+    let (xa, xb) = (-r * m_b / (m_a + m_b), r * m_a / (m_a + m_b));
+    let start = TwoBodyState::new(
+        body(
+            Vec3::new(xa, 0.0, 0.0),
+            Vec3::new(0.0, n * xa, 0.0),
+            Vec3::zeros(),
+            Vec3::zeros(),
+        ),
+        body(
+            Vec3::new(xb, 0.0, 0.0),
+            Vec3::new(0.0, n * xb, 0.0),
+            Vec3::new(0.0, 0.0, 0.003),
+            Vec3::new(0.0, 0.0, n),
+        ),
+    );
+    let predicted =
+        2.0 * PI / ((m_a / r.powi(3)).sqrt() * (3.0 * (a * a - b * b) / (a * a + b * b)).sqrt());
+    let mut analyser = surfgrav_dynamics::SpinOrbitAnalyser::new(
+        [model.inertia_a(), model.inertia_b()],
+        m_a + m_b,
+        total_j(&model, &start),
+    );
+    Adaptive::dop853(1e-12, 1e-12)
+        .unwrap()
+        .integrate_with_output(
+            &model,
+            &start,
+            0.0,
+            4.2 * predicted,
+            predicted / 400.0,
+            &mut |_| {},
+            &mut |t, s| analyser.observe_state(t, s),
+        )
+        .unwrap();
+    let report = analyser.report();
+    let secondary = report.bodies[1];
+    let period = secondary.libration_period.unwrap();
+    println!("{report:#?}");
+    assert!(
+        (period / predicted - 1.0).abs() < 2e-4,
+        "{period} vs {predicted}"
+    );
+    let libration = secondary.libration.unwrap();
+    assert!(
+        libration.max > 0.16 && libration.max < 0.18,
+        "{libration:?}"
+    ); // 0.003 rad = 0.172°
+    assert!(secondary.obliquity.unwrap().max < 1e-9);
+    let spin = secondary.spin_rate.unwrap();
+    assert!(spin.min > 0.99 * n && spin.max < 1.01 * n);
+    // A sphere does not librate; the primary does not spin.
+    assert_eq!(report.bodies[0].libration, None);
+    let orbit = report.orbit;
+    // The circular orbit is not a Kepler orbit of μ = G(m_A + m_B): the secondary's
+    // quadrupole makes n²r³/μ = 1 + δ, and the osculating eccentricity of a circle with
+    // v² = n²r² is e = |r v²/μ − 1| = |δ| (4e-5 here), to a few per cent as φ librates.
+    let delta = (n * n * r.powi(3) / (m_a + m_b) - 1.0).abs();
+    let e = orbit.eccentricity.unwrap();
+    assert!(
+        e.min > 0.8 * delta && e.max < 1.2 * delta,
+        "{e:?} vs {delta:e}"
+    );
+    assert!(orbit.inclination.unwrap().max < 1e-9);
+    let sma = orbit.semi_major_axis.unwrap();
+    // a = r / (2 − r v²/μ) = r / (1 − δ).
+    assert!((sma.min / r - 1.0).abs() < 2.0 * delta && (sma.max / r - 1.0).abs() < 2.0 * delta);
+}
