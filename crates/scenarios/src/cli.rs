@@ -337,6 +337,17 @@ fn field_commands(command: Command) -> Result<String, UserError> {
                 parse_vector("--position", &position)?,
                 parse_vector("--orientation-b", &orientation_b)?,
             );
+            // Distances whose square overflows leave every force and error estimate non-finite:
+            // that is input out of range, not a tolerance to relax.
+            let distance = pose_b.position.norm();
+            if !(distance * distance).is_finite() {
+                return Err(UserError(format!(
+                    "--position {position}: values out of range: the squared distance {}² \
+                     overflows double precision; rescale the units so that coordinates stay \
+                     well inside 1e-150…1e150",
+                    crate::spec::compact(distance)
+                )));
+            }
             let mut engine = InteractionEngine::new(InteractionOptions {
                 relative_tolerance: tolerance,
                 ..InteractionOptions::default()

@@ -169,6 +169,15 @@ fn bad_input_is_one_line_exit_2() {
             ],
             "--b",
         ),
+        // Out of double precision's range: said so, not "relax the tolerance".
+        (
+            &["interact", "--a", a, "--b", a, "--position", "1e307,0,0"],
+            "values out of range",
+        ),
+        (
+            &["interact", "--a", a, "--b", a, "--position", "0,-1e200,0"],
+            "values out of range",
+        ),
     ];
     for (args, needle) in cases {
         let out = surfgrav(args);
@@ -185,5 +194,6 @@ fn bad_input_is_one_line_exit_2() {
             "{args:?}: `{stderr}` does not name `{needle}`"
         );
         assert!(!stderr.contains("panicked"), "{stderr}");
+        assert!(!stderr.contains("relax"), "{args:?}: {stderr}");
     }
 }
