@@ -4,6 +4,8 @@
 //! - bodies ([`bodies`]): `Sphere`, `Spheroid`, `Ellipsoid`, `Disk`, `PointMass`, with
 //!   `field(points)` over an (N, 3) array, in parallel;
 //! - interactions ([`interaction`]): `interact` and `interact_batch`;
+//! - simulations ([`simulation`]): `Simulation` (two bodies, an integrator by name,
+//!   `integrate(t_end, interval=None)` returning a `Trajectory` of arrays);
 //!
 //! Conventions are the workspace's (README): Φ < 0, a = −∇Φ, V < 0, orientations body → world.
 //! Computation runs with the GIL released; errors are Python exceptions ([`errors`]), never a
@@ -15,6 +17,7 @@ mod arrays;
 mod bodies;
 mod errors;
 mod interaction;
+mod simulation;
 
 /// The compiled part of the `surfgrav` package.
 #[pymodule]
@@ -31,6 +34,8 @@ fn _surfgrav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<bodies::Disk>()?;
     m.add_class::<interaction::Interaction>()?;
     m.add_class::<interaction::BatchInteraction>()?;
+    m.add_class::<simulation::Simulation>()?;
+    m.add_class::<simulation::Trajectory>()?;
     m.add_function(wrap_pyfunction!(interaction::interact, m)?)?;
     m.add_function(wrap_pyfunction!(interaction::interact_batch, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

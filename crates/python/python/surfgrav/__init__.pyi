@@ -156,3 +156,72 @@ def interact_batch(
     tolerance: float = 1e-12,
 ) -> BatchInteraction:
     """interact for an (N, 3) array of positions, with (N, 3)/(N, 4) or shared orientations."""
+
+class Trajectory:
+    """Rows of a Simulation.integrate run."""
+
+    @property
+    def t(self) -> FloatArray: ...
+    @property
+    def positions(self) -> FloatArray:
+        """(M, 2, 3) centroid positions of A and B."""
+    @property
+    def velocities(self) -> FloatArray: ...
+    @property
+    def orientations(self) -> FloatArray:
+        """(M, 2, 4) unit quaternions, scalar first, body → world."""
+    @property
+    def angular_velocities(self) -> FloatArray: ...
+    @property
+    def energy(self) -> FloatArray: ...
+    @property
+    def angular_momentum(self) -> FloatArray:
+        """(M, 3) total angular momentum about the origin, orbital and spin."""
+    @property
+    def summary(self) -> dict:
+        """steps, rejected_steps, force_evaluations, motion_path ("translation" or "rotation"),
+        motion_reason, model, integrator, termination ("completed", "contact", "escape"),
+        event_time, t_start, t_end, wall_seconds."""
+    def __len__(self) -> int: ...
+
+class Simulation:
+    """Two bodies, their states and an integrator chosen by name."""
+
+    t: float
+    integrator: str
+    step: Optional[float]
+    tolerance: Optional[float]
+    interaction_tolerance: float
+    tabulate: bool
+    escape_distance: Optional[float]
+    def __init__(
+        self,
+        integrator: str = "rk4",
+        step: Optional[float] = None,
+        tolerance: Optional[float] = None,
+        t: float = 0.0,
+        interaction_tolerance: float = 1e-12,
+        tabulate: bool = True,
+        escape_distance: Optional[float] = None,
+    ) -> None: ...
+    @property
+    def N(self) -> int: ...
+    @property
+    def bodies(self) -> Tuple[Body, ...]: ...
+    @property
+    def positions(self) -> FloatArray: ...
+    @property
+    def velocities(self) -> FloatArray: ...
+    @property
+    def orientations(self) -> FloatArray: ...
+    @property
+    def angular_velocities(self) -> FloatArray: ...
+    def add(
+        self,
+        body: Body,
+        position: Optional[Vector] = None,
+        velocity: Optional[Vector] = None,
+        orientation: Optional[Orientation] = None,
+        angular_velocity: Optional[Vector] = None,
+    ) -> None: ...
+    def integrate(self, t_end: float, interval: Optional[float] = None) -> Trajectory: ...
