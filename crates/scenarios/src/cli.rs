@@ -672,5 +672,11 @@ pub fn run_digest(record: &RunRecord, folder: &Path, files: &[String]) -> String
             crate::spec::compact(t)
         ));
     }
+    if let Some(t) = record.escape() {
+        lines.push(format!(
+            "the bodies escaped each other at t = {}{time}: the run stopped there",
+            crate::spec::compact(t)
+        ));
+    }
     lines.join("\n")
 }
