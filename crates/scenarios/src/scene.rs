@@ -527,7 +527,10 @@ impl SceneFile {
 
         let integrator = build_integrator(&loc, &self.integrator)?;
         if let IntegratorChoice::Fixed { step, .. } = integrator {
-            if let Err(message) = step_fits(step, t_end - t_start) {
+            let time_scale = dynamical_time(&initial, &body_a, &body_b, g);
+            if let Err(message) = step_fits(step, t_end - t_start)
+                .and_then(|()| step_resolves_orbit(step, time_scale))
+            {
                 let at = self.integrator.get_ref().step.as_ref().map_or_else(
                     || loc.at(&self.integrator, "integrator.step", ""),
                     |s| loc.at(s, "integrator.step", ""),
@@ -946,6 +949,13 @@ impl Scene {
                 let flag = if step_given { "--dt" } else { "--t-end" };
                 format!("{flag}: {m}")
             })?;
+            let time_scale = dynamical_time(
+                &self.initial,
+                &self.body_a,
+                &self.body_b,
+                self.gravitational_constant,
+            );
+            step_resolves_orbit(step, time_scale).map_err(|m| format!("--dt: {m}"))?;
         }
         Ok(())
     }
@@ -962,6 +972,33 @@ fn step_fits(step: Real, span: Real) -> Result<(), String> {
              the run's length and the orbit's period (the paper's presets use 0.1 for t = 300)",
             compact(step),
             compact(span)
+        ))
+    }
+}
+
+/// The orbit's dynamical time at the start, $\tau = \sqrt{r^3 / (G(m_A + m_B))}$ (a circular
+/// orbit of radius r has period $2\pi\tau$; paper-2s: τ = 13.1, T_r = 47.4).
+fn dynamical_time(initial: &TwoBodyState, body_a: &BuiltBody, body_b: &BuiltBody, g: Real) -> Real {
+    let mass = body_a.into_potential().mass() + body_b.into_potential().mass();
+    let r = initial.separation();
+    (r * r * r / (g * mass)).sqrt()
+}
+
+/// A fixed step longer than the orbit's dynamical time τ cannot follow the orbit (RK4 is
+/// unstable beyond hω ≈ 2.8 with ω = 1/τ on a circular orbit, and any method's error is of
+/// order one there): it would give a few steps of meaningless numbers. Refused; a step of
+/// τ/100 or less is sensible. (Not a guarantee: close approaches need a smaller step still.)
+fn step_resolves_orbit(step: Real, time_scale: Real) -> Result<(), String> {
+    if !(time_scale.is_finite() && step > time_scale) {
+        Ok(())
+    } else {
+        Err(format!(
+            "the step {} is longer than the orbit's dynamical time √(r³/G(m_A + m_B)) = {} at \
+             the start: no fixed-step method can follow the orbit; choose a step of about a \
+             hundredth of it or less (e.g. {})",
+            compact(step),
+            crate::cli::significant(time_scale, 3),
+            crate::cli::significant(time_scale / 100.0, 1)
         ))
     }
 }

@@ -328,6 +328,12 @@ fn bad_input_is_one_line_exit_2_and_no_folder() {
             vec!["run", "paper-2s", "--t-end", "0.05"],
             "--t-end: the step 0.1 is longer than the run",
         ),
+        // Shorter than the run but longer than the orbit's time scale (τ = 13.1): two steps of
+        // meaningless numbers once, now refused.
+        (
+            vec!["run", "paper-2s", "--dt", "200"],
+            "--dt: the step 200 is longer than the orbit's dynamical time √(r³/G(m_A + m_B)) = 13.1",
+        ),
         (vec!["run", &far_apart], "values out of range"),
         (vec!["run", &duplicate], "duplicate key `mass`"),
         // A subnormal mass: a short message with the number in scientific form.
