@@ -1,11 +1,10 @@
 //! The interaction engine: method choice, the resolution ladder, the adaptive alternative, and
 //! the assembly of world-frame results.
 
+use super::aimed;
 use super::body::{Body, BodyShape, SourceField, ALIGNMENT};
 use super::error::{InteractionError, Side};
-use super::kernel::{
-    lamina_sums, solid_force_sums, solid_table_sums, FrameMap, LaminaSums, SolidSums,
-};
+use super::kernel::{lamina_sums, solid_table_sums, FrameMap, LaminaSums, SolidSums};
 use super::nested::{self as nested_rule, ellipsoid_line, round_base, solid_sums_from};
 use super::overlap::{contact, Contact};
 use super::rules::{
@@ -167,7 +166,7 @@ impl Default for InteractionOptions {
             relative_tolerance: 1e-12,
             method: MethodChoice::Automatic,
             surface: SurfaceChoice::Automatic,
-            parametrisation: Parametrisation::AzimuthHeight,
+            parametrisation: Parametrisation::Automatic,
             max_evaluations: 4_000_000,
             exploit_symmetry: true,
             cluster_azimuth: true,
@@ -277,6 +276,11 @@ struct Values {
 }
 
 impl Values {
+    /// $|\delta\mathbf F|/|\mathbf F|$ against `other`.
+    fn force_change(&self, other: &Values) -> Real {
+        (self.force_on_a - other.force_on_a).norm() / self.force_on_a.norm().max(Real::MIN_POSITIVE)
+    }
+
     fn relative_change(&self, other: &Values) -> Real {
         let v = self.potential_energy.abs().max(Real::MIN_POSITIVE);
         let df = (self.force_on_a - other.force_on_a).norm()
@@ -361,6 +365,36 @@ struct Placement {
     node_check: bool,
     /// Whether the centroids are more than [`FAR_FIELD_RATIO`] of X's bounding radii apart.
     far: bool,
+    /// The aimed rule's pole and clustering, where the fixed rules use it over X
+    /// ([`Parametrisation::Aimed`], or [`Parametrisation::Automatic`] without both mirror
+    /// symmetries).
+    aim: Option<aimed::Aim>,
+}
+
+impl Placement {
+    /// This placement with the aimed rule's aim where the fixed rules use it over X: an
+    /// ellipsoid whose nodes need no check, with [`Parametrisation::Aimed`], or with
+    /// [`Parametrisation::Automatic`] unless the pose has both mirror symmetries (then the
+    /// azimuth–height table, clustered toward the other body and quartered, is cheaper).
+    fn aimed(self, x: &Body, y: &Body, options: InteractionOptions) -> Self {
+        let ladder = matches!(
+            options.method,
+            MethodChoice::Automatic | MethodChoice::FixedRules
+        );
+        let wanted = ladder
+            && match options.parametrisation {
+                Parametrisation::Aimed => true,
+                Parametrisation::Automatic => !(self.half_azimuth && self.half_transverse),
+                Parametrisation::AzimuthHeight | Parametrisation::PolarAzimuth => false,
+            };
+        let aim = match x.shape() {
+            BodyShape::Solid(e) if wanted && !self.node_check => {
+                Some(aimed::aim(e, y, &self.map, options.relative_tolerance))
+            }
+            _ => None,
+        };
+        Self { aim, ..self }
+    }
 }
 
 /// Computes interactions of [`Body`] pairs (see the [module docs](super)); holds the options
@@ -374,6 +408,8 @@ pub struct InteractionEngine {
     nested: NestedCubature<{ nested_rule::COMPONENTS }>,
     /// The nested rule's node geometry, kept ([`nested_rule::GeometryCache`]).
     nested_geometry: nested_rule::GeometryCache,
+    /// The aimed rule's unit-sphere grids, kept ([`aimed::GridCache`]).
+    aimed_grids: aimed::GridCache,
     /// Set during [`InteractionEngine::force`]: the fixed rules sum and certify the force only.
     force_only: bool,
 }
@@ -431,6 +467,7 @@ impl InteractionEngine {
             adaptive: None,
             nested: NestedCubature::new(),
             nested_geometry: nested_rule::GeometryCache::default(),
+            aimed_grids: aimed::GridCache::default(),
             force_only: false,
         })
     }
@@ -626,6 +663,15 @@ impl InteractionEngine {
     /// measurements show: integrate over the body that is small and far from the other's
     /// singular set (its focal set), seen at a high elevation, with a cheap field to evaluate.
     fn predicted_cost(&self, placement: &Placement, y: &Body) -> Real {
+        let field_cost = match &y.field {
+            SourceField::PointMass(_) | SourceField::Sphere(_) => 0.2,
+            SourceField::Spheroid(_) | SourceField::Custom(_) => 1.0,
+            SourceField::Ellipsoid(_) => 3.0,
+            SourceField::Disk(_) => 3.5,
+        };
+        if let Some(aim) = &placement.aim {
+            return aimed::grid_key(aim.start, aim).size() as Real * field_cost;
+        }
         let t = Real::from(self.start_transverse(placement));
         let kappa = TRANSVERSE_RATIO[usize::from(placement.ratio)];
         let mut nodes = t * t / kappa;
@@ -635,12 +681,6 @@ impl InteractionEngine {
         if placement.half_transverse {
             nodes *= 0.5;
         }
-        let field_cost = match &y.field {
-            SourceField::PointMass(_) | SourceField::Sphere(_) => 0.2,
-            SourceField::Spheroid(_) | SourceField::Custom(_) => 1.0,
-            SourceField::Ellipsoid(_) => 3.0,
-            SourceField::Disk(_) => 3.5,
-        };
         nodes * field_cost
     }
 
@@ -711,7 +751,9 @@ impl InteractionEngine {
             node_check: unknown_shape && bounding_overlap,
             far: distance > FAR_FIELD_RATIO * x.bounding_radius()
                 || distance > CANCELLATION_RATIO * cancellation_radius(x),
-        })
+            aim: None,
+        }
+        .aimed(x, y, self.options))
     }
 
     /// The first transverse count of the ladder, predicted from the gap ratio $g$, the
@@ -741,7 +783,12 @@ impl InteractionEngine {
 
     fn table_key(&self, p: &Placement, transverse: u16) -> TableKey {
         TableKey {
-            parametrisation: self.options.parametrisation,
+            parametrisation: match self.options.parametrisation {
+                Parametrisation::Aimed | Parametrisation::Automatic => {
+                    Parametrisation::AzimuthHeight
+                }
+                other => other,
+            },
             transverse,
             ratio: p.ratio,
             clustering: p.clustering,
@@ -787,88 +834,85 @@ impl InteractionEngine {
         y: &Body,
         p: &Placement,
     ) -> Result<Interaction, InteractionError> {
-        let tolerance = self.options.relative_tolerance;
-        let method = match p.side {
-            Side::A => Method::SurfaceOverA,
-            Side::B => Method::SurfaceOverB,
-        };
-        let growth = self.growth();
+        if let (Some(aim), BodyShape::Solid(e)) = (p.aim, x.shape()) {
+            return self.aimed_ladder(e, &aim, x, y, p);
+        }
         let key = |transverse: u16| self.table_key(p, transverse);
-        let mut level = self.start_transverse(p);
-        // With a small budget, start low enough for two levels to fit (a reported best result
-        // with its estimate is worth more than no result).
-        while level > 2 {
-            let pair = table_size(x.shape(), &key(level))
-                + table_size(x.shape(), &key(next_transverse(level, growth)));
-            if pair <= self.options.max_evaluations {
-                break;
-            }
-            level = ((Real::from(level) / growth).floor() as u16)
-                .min(level - 1)
-                .max(2);
-        }
-        let mut previous: Option<Values> = None;
-        let mut previous_change: Option<Real> = None;
-        let mut evaluations = 0usize;
-        let mut best: Option<Interaction> = None;
-        loop {
-            let table = x.table(key(level))?;
-            let cost = table.len();
-            if evaluations + cost > self.options.max_evaluations {
-                return match best {
-                    Some(best) => Err(not_met(tolerance, best)),
-                    None => Err(InteractionError::BudgetTooSmall {
-                        max_evaluations: self.options.max_evaluations,
-                        minimum: evaluations + cost,
-                    }),
-                };
-            }
-            if p.node_check {
-                check_nodes(&table, y, &p.map)?;
-            }
-            let values = evaluate_table(x, y, &table, p, self.force_only);
-            evaluations += cost;
-            if let Some(coarse) = previous {
-                let change = values.relative_change(&coarse);
-                // From the third level on (the start prediction was too low: a harder regime,
-                // near contact or far from the equator), convergence in t can be uneven:
-                // Gauss–Legendre on the split halves gives errors 4.0e-11 at t = 28 and
-                // 3.0e-11 at t = 32 for a close prolate–oblate pair, and the fine level's
-                // error reached 1.2 times the last change (3.65e-14 against 3.05e-14). There the
-                // estimate is twice the change, or the tail of a geometric series with the
-                // observed ratio ρ of the last two changes, change·ρ/(1 − ρ), if larger.
-                let slow = previous_change.map_or(0.0, |before: Real| {
-                    let ratio = if before > 0.0 { change / before } else { 1.0 };
-                    let ratio = ratio.min(0.99);
-                    (2.0 * change).max(change * ratio / (1.0 - ratio))
-                });
-                previous_change = Some(change);
-                let estimate = change
-                    .max(slow)
-                    .max(values.form_discrepancy(values.torque_on_a.norm()))
-                    .max(values.rounding);
-                let result =
-                    values.finish(method, Some(p.side), evaluations, estimate, Some(level))?;
-                if estimate <= tolerance {
-                    return Ok(result);
+        let force_only = self.force_only;
+        run_ladder(
+            &self.ladder_settings(),
+            p,
+            self.start_transverse(p),
+            |level| table_size(x.shape(), &key(level)),
+            |level| {
+                let table = x.table(key(level))?;
+                if p.node_check {
+                    check_nodes(&table, y, &p.map)?;
                 }
-                if values.relative_change(&coarse) <= values.rounding {
-                    // The levels agree to rounding: refining cannot lower the estimate.
-                    return Err(not_met(tolerance, result));
-                }
-                best = Some(result);
-            }
-            if level >= MAX_TRANSVERSE {
-                return match best {
-                    Some(best) => Err(not_met(tolerance, best)),
-                    None => Err(InteractionError::NonFiniteResult {
-                        what: "no resolution level could be evaluated",
-                    }),
-                };
-            }
-            previous = Some(values);
-            level = next_transverse(level, growth).min(MAX_TRANSVERSE);
+                Ok((evaluate_table(x, y, &table, p, force_only), table.len()))
+            },
+        )
+    }
+
+    fn ladder_settings(&self) -> LadderSettings {
+        LadderSettings {
+            tolerance: self.options.relative_tolerance,
+            max_evaluations: self.options.max_evaluations,
+            growth: self.growth(),
+            jump: false,
         }
+    }
+
+    /// The ladder of the aimed rule ([`super::aimed`]) over the ellipsoid `e` (X's surface).
+    fn aimed_ladder(
+        &mut self,
+        e: &crate::Ellipsoid,
+        aim: &aimed::Aim,
+        x: &Body,
+        y: &Body,
+        p: &Placement,
+    ) -> Result<Interaction, InteractionError> {
+        // The aimed nodes have no mirror symmetry.
+        let p = &Placement {
+            half_azimuth: false,
+            half_transverse: false,
+            ..*p
+        };
+        let start = aim.start;
+        let force_only = self.force_only;
+        let settings = LadderSettings {
+            jump: true,
+            ..self.ladder_settings()
+        };
+        let grids = &mut self.aimed_grids;
+        run_ladder(
+            &settings,
+            p,
+            start,
+            |level| aimed::grid_key(level, aim).size(),
+            |level| {
+                let grid = grids.get(aimed::grid_key(level, aim))?;
+                let sums = match (p.far, force_only) {
+                    (true, true) => with_field!(&y.field, |f| aimed::aimed_sums::<_, true, false>(
+                        e, &grid, aim, f, &p.map
+                    )),
+                    (false, true) => with_field!(
+                        &y.field,
+                        |f| aimed::aimed_sums::<_, false, false>(e, &grid, aim, f, &p.map)
+                    ),
+                    (true, false) => with_field!(&y.field, |f| aimed::aimed_sums::<_, true, true>(
+                        e, &grid, aim, f, &p.map
+                    )),
+                    (false, false) => with_field!(
+                        &y.field,
+                        |f| aimed::aimed_sums::<_, false, true>(e, &grid, aim, f, &p.map)
+                    ),
+                };
+                let mut values = solid_values(sums, x.density, p);
+                values.force_only = force_only;
+                Ok((values, grid.len()))
+            },
+        )
     }
 
     /// The nested doubling rule over an ellipsoid X (other surfaces, and bodies of unknown
@@ -1056,6 +1100,134 @@ impl InteractionEngine {
     }
 }
 
+/// What a ladder of levels needs from the engine's options.
+struct LadderSettings {
+    tolerance: Real,
+    max_evaluations: usize,
+    growth: Real,
+    /// From the third level on, jump to the level the observed rate of convergence predicts
+    /// (at most 1.5 times the current one) instead of the next of the ladder.
+    jump: bool,
+}
+
+/// A ladder of levels from `start` (a level named by its transverse count): `size(level)` is
+/// a level's cost in evaluations, `evaluate(level)` its values and cost. Levels grow until two
+/// successive ones agree to the tolerance (see the module docs for the estimate).
+fn run_ladder(
+    settings: &LadderSettings,
+    p: &Placement,
+    start: u16,
+    size: impl Fn(u16) -> usize,
+    mut evaluate: impl FnMut(u16) -> Result<(Values, usize), InteractionError>,
+) -> Result<Interaction, InteractionError> {
+    let tolerance = settings.tolerance;
+    let method = match p.side {
+        Side::A => Method::SurfaceOverA,
+        Side::B => Method::SurfaceOverB,
+    };
+    let growth = settings.growth;
+    let mut level = start;
+    // With a small budget, start low enough for two levels to fit (a reported best result
+    // with its estimate is worth more than no result).
+    while level > 2 {
+        let pair = size(level) + size(next_transverse(level, growth));
+        if pair <= settings.max_evaluations {
+            break;
+        }
+        level = ((Real::from(level) / growth).floor() as u16)
+            .min(level - 1)
+            .max(2);
+    }
+    let mut previous: Option<Values> = None;
+    let mut previous_change: Option<Real> = None;
+    let mut previous_level = level;
+    let mut jumped = false;
+    let mut previous_force_change: Option<Real> = None;
+    let mut evaluations = 0usize;
+    let mut best: Option<Interaction> = None;
+    loop {
+        let cost = size(level);
+        if evaluations + cost > settings.max_evaluations {
+            return match best {
+                Some(best) => Err(not_met(tolerance, best)),
+                None => Err(InteractionError::BudgetTooSmall {
+                    max_evaluations: settings.max_evaluations,
+                    minimum: evaluations + cost,
+                }),
+            };
+        }
+        let (values, cost) = evaluate(level)?;
+        evaluations += cost;
+        let force_change_before = previous_force_change;
+        previous_force_change = previous.map(|coarse| values.force_change(&coarse));
+        if let Some(coarse) = previous {
+            let change = values.relative_change(&coarse);
+            // From the third level on (the start prediction was too low: a harder regime,
+            // near contact or far from the equator), convergence in t can be uneven:
+            // Gauss–Legendre on the split halves gives errors 4.0e-11 at t = 28 and
+            // 3.0e-11 at t = 32 for a close prolate–oblate pair, and the fine level's
+            // error reached 1.2 times the last change (3.65e-14 against 3.05e-14). There the
+            // estimate is twice the change, or the tail of a geometric series with the
+            // observed ratio ρ of the last two changes, change·ρ/(1 − ρ), if larger.
+            let slow = previous_change.map_or(0.0, |before: Real| {
+                let ratio = if before > 0.0 { change / before } else { 1.0 };
+                let ratio = ratio.min(0.99);
+                (2.0 * change).max(change * ratio / (1.0 - ratio))
+            });
+            previous_change = Some(change);
+            let estimate = change
+                .max(slow)
+                .max(values.form_discrepancy(values.torque_on_a.norm()))
+                .max(values.rounding);
+            let result = values.finish(method, Some(p.side), evaluations, estimate, Some(level))?;
+            if estimate <= tolerance {
+                return Ok(result);
+            }
+            if values.relative_change(&coarse) <= values.rounding {
+                // The levels agree to rounding: refining cannot lower the estimate.
+                return Err(not_met(tolerance, result));
+            }
+            best = Some(result);
+        }
+        if level >= MAX_TRANSVERSE {
+            return match best {
+                Some(best) => Err(not_met(tolerance, best)),
+                None => Err(InteractionError::NonFiniteResult {
+                    what: "no resolution level could be evaluated",
+                }),
+            };
+        }
+        let mut next = next_transverse(level, growth);
+        let mut jump = false;
+        if let (true, false, Some(before), Some(change)) = (
+            settings.jump,
+            jumped,
+            force_change_before,
+            previous_force_change,
+        ) {
+            // Errors falling like exp(−r t): the rate from the last two changes of the force
+            // (each the error of its coarser level; the force alone, so that a force-only
+            // evaluation takes the same levels and stops no later), and the level whose
+            // error would be half the tolerance; the level after it then certifies. Never
+            // two jumps in a row: the change after a jump measures the level before it.
+            let from = Real::from(previous_level);
+            let rate = (before / change).ln() / (Real::from(level) - from);
+            if rate.is_finite() && rate > 0.0 {
+                let needed = from + (2.0 * change / tolerance).ln() / rate;
+                let capped = needed.min(1.5 * Real::from(level)).ceil();
+                if capped > Real::from(next) {
+                    next = capped as u16;
+                    jump = true;
+                }
+            }
+        }
+        jumped = jump;
+        previous_level = level;
+        previous = Some(values);
+        level = next.min(MAX_TRANSVERSE);
+    }
+}
+
 fn not_met(tolerance: Real, best: Interaction) -> InteractionError {
     InteractionError::ToleranceNotMet {
         tolerance,
@@ -1159,22 +1331,31 @@ fn evaluate_table(
 ) -> Values {
     match table {
         NodeTable::Solid(t) => {
-            if force_only {
-                let sums = if p.far {
-                    with_field!(&y.field, |f| solid_force_sums::<_, true>(t, f, &p.map))
-                } else {
-                    with_field!(&y.field, |f| solid_force_sums::<_, false>(t, f, &p.map))
-                };
-                let mut values = solid_values(sums, x.density, p);
-                values.force_only = true;
-                return values;
-            }
-            let s = if p.far {
-                with_field!(&y.field, |f| solid_table_sums::<_, true>(t, f, &p.map))
-            } else {
-                with_field!(&y.field, |f| solid_table_sums::<_, false>(t, f, &p.map))
+            let sums = match (p.far, force_only) {
+                (true, true) => {
+                    with_field!(&y.field, |f| solid_table_sums::<_, true, false>(
+                        t, f, &p.map
+                    ))
+                }
+                (false, true) => {
+                    with_field!(&y.field, |f| solid_table_sums::<_, false, false>(
+                        t, f, &p.map
+                    ))
+                }
+                (true, false) => {
+                    with_field!(&y.field, |f| solid_table_sums::<_, true, true>(
+                        t, f, &p.map
+                    ))
+                }
+                (false, false) => {
+                    with_field!(&y.field, |f| solid_table_sums::<_, false, true>(
+                        t, f, &p.map
+                    ))
+                }
             };
-            solid_values(s, x.density, p)
+            let mut values = solid_values(sums, x.density, p);
+            values.force_only = force_only;
+            values
         }
         NodeTable::Lamina(t) => {
             let mut s = with_field!(&y.field, |f| lamina_sums(t, f, &p.map));

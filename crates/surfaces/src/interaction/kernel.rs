@@ -240,9 +240,9 @@ pub(crate) fn solid_sums<P: Potential + ?Sized>(
     }
 }
 
-/// What a solid node table's loop needs per node besides the point and the weighted area
-/// vector $\mathbf W$: constants of the table, computed once when it is built
-/// ($\mathbf x = \mathbf r - \mathbf o$).
+/// What a solid node's terms need besides the field, the point and the weighted area vector
+/// $\mathbf W$: constants of the node ($\mathbf x = \mathbf r - \mathbf o$), computed once when a
+/// table is built (or per node where the nodes move with the pose).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct NodeConstants {
     /// $\mathbf x\times\mathbf W$.
@@ -261,6 +261,119 @@ pub(crate) struct NodeConstants {
     x_norm: Real,
 }
 
+impl NodeConstants {
+    /// The constants of a node at $\mathbf x$ (from the centroid) with area vector `w`.
+    #[inline(always)]
+    pub(crate) fn new(x: Vec3, w: &Vec3) -> Self {
+        let moment = x.cross(w);
+        Self {
+            moment,
+            half_x2: 0.5 * x.norm_squared(),
+            x_dot_w: x.dot(w),
+            w_norm: w.norm(),
+            moment_norm: moment.norm(),
+            x,
+            x_norm: x.norm(),
+        }
+    }
+}
+
+/// One block's plain sums of the solid integrand (summed compensated across blocks).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct SolidBlock {
+    /// $\sum(\Phi - \Phi_0)\mathbf W$.
+    pub(crate) flux: Vec3,
+    /// $\sum(\Phi - \Phi_0)\,\mathbf x\times\mathbf W$.
+    pub(crate) moment: Vec3,
+    /// $\sum\tfrac12|\mathbf x|^2\,\mathbf W\times\mathbf a$.
+    pub(crate) gradient_moment: Vec3,
+    /// $\sum(\Phi\mathbf x + \tfrac12|\mathbf x|^2\mathbf a)\cdot\mathbf W$.
+    pub(crate) energy: Real,
+    /// $\sum\mathbf x\,(\mathbf a\cdot\mathbf W)$ (far away only).
+    pub(crate) acceleration_flux: Vec3,
+}
+
+/// The running sizes of the solid integrand's terms (the rounding bounds of [`SolidSums`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct SolidMagnitudes {
+    flux: Real,
+    moment: Real,
+    energy: Real,
+    acceleration: Real,
+    potential: Real,
+}
+
+impl SolidMagnitudes {
+    /// The sums with these magnitudes.
+    pub(crate) fn sums(
+        &self,
+        potential_flux: Vec3,
+        potential_moment: Vec3,
+        gradient_moment: Vec3,
+        energy_flux: Real,
+        acceleration_flux: Vec3,
+    ) -> SolidSums {
+        SolidSums {
+            potential_flux,
+            potential_moment,
+            gradient_moment,
+            energy_flux,
+            potential_flux_magnitude: self.flux,
+            potential_moment_magnitude: self.moment,
+            energy_flux_magnitude: self.energy,
+            acceleration_flux,
+            acceleration_flux_magnitude: self.acceleration,
+            potential_magnitude: self.potential,
+        }
+    }
+}
+
+/// The solid integrand at one node, added to a block's sums: the one place where the terms of
+/// the force (both forms), the torques (both forms) and the energy are written. `field` is the
+/// source's field at the node (source frame; `map` turns its acceleration back), `w` the
+/// weighted area vector, `reference` the source's potential at the centroid. `FULL`: torques
+/// and energy too (otherwise the force alone); `FAR`: the acceleration form of the force too.
+#[inline(always)]
+pub(crate) fn add_solid_node<const FAR: bool, const FULL: bool>(
+    block: &mut SolidBlock,
+    sizes: &mut SolidMagnitudes,
+    field: &Field,
+    map: &FrameMap,
+    w: &Vec3,
+    k: &NodeConstants,
+    reference: Real,
+) {
+    let phi = field.potential;
+    if FULL {
+        let a = map.back(&field.acceleration);
+        let a_dot_w = a.dot(w);
+        let (e_potential, e_gradient) = (phi * k.x_dot_w, k.half_x2 * a_dot_w);
+        if FAR {
+            block.acceleration_flux += k.x * a_dot_w;
+            sizes.acceleration += k.x_norm * a_dot_w.abs();
+        }
+        sizes.potential += phi.abs() * k.w_norm;
+        let relative = phi - reference;
+        block.flux += w * relative;
+        block.moment += k.moment * relative;
+        block.gradient_moment += w.cross(&a) * k.half_x2;
+        block.energy += e_potential + e_gradient;
+        sizes.flux += relative.abs() * k.w_norm;
+        sizes.moment += relative.abs() * k.moment_norm;
+        sizes.energy += e_potential.abs() + e_gradient.abs();
+    } else {
+        if FAR {
+            let a_dot_w = map.back(&field.acceleration).dot(w);
+            block.acceleration_flux += k.x * a_dot_w;
+            sizes.acceleration += k.x_norm * a_dot_w.abs();
+        }
+        sizes.potential += phi.abs() * k.w_norm;
+        let relative = phi - reference;
+        block.flux += w * relative;
+        sizes.flux += relative.abs() * k.w_norm;
+    }
+}
+
 /// A solid's node table with its per-node constants (the engine's cached form).
 #[derive(Debug, Clone)]
 pub(crate) struct SolidTable {
@@ -275,19 +388,7 @@ impl SolidTable {
             .points()
             .iter()
             .zip(nodes.weighted_area_vectors())
-            .map(|(r, w)| {
-                let x = r - origin;
-                let moment = x.cross(w);
-                NodeConstants {
-                    moment,
-                    half_x2: 0.5 * x.norm_squared(),
-                    x_dot_w: x.dot(w),
-                    w_norm: w.norm(),
-                    moment_norm: moment.norm(),
-                    x,
-                    x_norm: x.norm(),
-                }
-            })
+            .map(|(r, w)| NodeConstants::new(r - origin, w))
             .collect();
         Self { nodes, constants }
     }
@@ -324,10 +425,12 @@ fn block_fields<P: Potential + ?Sized, const ACCELERATION: bool>(
     fields
 }
 
-/// [`solid_sums`] over a [`SolidTable`], with the per-node constants read instead of
-/// recomputed (the same sums, term by term).
+/// The node sums over a [`SolidTable`] ([`add_solid_node`] with the table's constants):
+/// `FULL`, everything; otherwise the force parts alone, the potential form and, with `FAR`,
+/// the acceleration form (the field's acceleration is then needed; otherwise only the
+/// potential is evaluated).
 #[inline(never)]
-pub(crate) fn solid_table_sums<P: Potential + ?Sized, const FAR: bool>(
+pub(crate) fn solid_table_sums<P: Potential + ?Sized, const FAR: bool, const FULL: bool>(
     table: &SolidTable,
     source: &P,
     map: &FrameMap,
@@ -336,9 +439,8 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized, const FAR: bool>(
     let mut moment = CompensatedSum3::new();
     let mut gradient_moment = CompensatedSum3::new();
     let mut energy = CompensatedSum::new();
-    let (mut flux_size, mut moment_size, mut energy_size) = (0.0, 0.0, 0.0);
     let mut acceleration_flux = CompensatedSum3::new();
-    let (mut acceleration_size, mut potential_size) = (0.0, 0.0);
+    let mut sizes = SolidMagnitudes::default();
     let reference = source.potential(&map.apply(&table.nodes.origin()));
     for ((block_points, block_weights), block_constants) in table
         .nodes
@@ -347,97 +449,30 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized, const FAR: bool>(
         .zip(table.nodes.weighted_area_vectors().chunks(BLOCK))
         .zip(table.constants.chunks(BLOCK))
     {
-        let mut f = Vec3::zeros();
-        let mut m = Vec3::zeros();
-        let mut g = Vec3::zeros();
-        let mut e = 0.0;
-        let mut af = Vec3::zeros();
-        let fields = block_fields::<P, true>(block_points, source, map);
-        for ((w, k), field) in block_weights.iter().zip(block_constants).zip(fields) {
-            let phi = field.potential;
-            let a = map.back(&field.acceleration);
-            let a_dot_w = a.dot(w);
-            let (e_potential, e_gradient) = (phi * k.x_dot_w, k.half_x2 * a_dot_w);
-            if FAR {
-                af += k.x * a_dot_w;
-                acceleration_size += k.x_norm * a_dot_w.abs();
-            }
-            potential_size += phi.abs() * k.w_norm;
-            let relative = phi - reference;
-            f += w * relative;
-            m += k.moment * relative;
-            g += w.cross(&a) * k.half_x2;
-            e += e_potential + e_gradient;
-            flux_size += relative.abs() * k.w_norm;
-            moment_size += relative.abs() * k.moment_norm;
-            energy_size += e_potential.abs() + e_gradient.abs();
+        let mut block = SolidBlock::default();
+        let fields = if FULL || FAR {
+            block_fields::<P, true>(block_points, source, map)
+        } else {
+            block_fields::<P, false>(block_points, source, map)
+        };
+        for ((w, k), field) in block_weights.iter().zip(block_constants).zip(&fields) {
+            add_solid_node::<FAR, FULL>(&mut block, &mut sizes, field, map, w, k, reference);
         }
-        flux.add(&f);
-        moment.add(&m);
-        gradient_moment.add(&g);
-        energy.add(e);
-        acceleration_flux.add(&af);
-    }
-    SolidSums {
-        potential_flux: flux.value(),
-        potential_moment: moment.value(),
-        gradient_moment: gradient_moment.value(),
-        energy_flux: energy.value(),
-        potential_flux_magnitude: flux_size,
-        potential_moment_magnitude: moment_size,
-        energy_flux_magnitude: energy_size,
-        acceleration_flux: acceleration_flux.value(),
-        acceleration_flux_magnitude: acceleration_size,
-        potential_magnitude: potential_size,
-    }
-}
-
-/// The force parts of [`solid_table_sums`] alone: the potential form and, with `FAR`, the
-/// acceleration form (the field's acceleration is then needed; otherwise only the potential
-/// is evaluated).
-#[inline(never)]
-pub(crate) fn solid_force_sums<P: Potential + ?Sized, const FAR: bool>(
-    table: &SolidTable,
-    source: &P,
-    map: &FrameMap,
-) -> SolidSums {
-    let mut flux = CompensatedSum3::new();
-    let mut acceleration_flux = CompensatedSum3::new();
-    let (mut size, mut acceleration_size, mut potential_size) = (0.0, 0.0, 0.0);
-    let reference = source.potential(&map.apply(&table.nodes.origin()));
-    for ((block_points, block_weights), block_constants) in table
-        .nodes
-        .points()
-        .chunks(BLOCK)
-        .zip(table.nodes.weighted_area_vectors().chunks(BLOCK))
-        .zip(table.constants.chunks(BLOCK))
-    {
-        let mut f = Vec3::zeros();
-        let mut af = Vec3::zeros();
-        let fields = block_fields::<P, FAR>(block_points, source, map);
-        for ((w, k), field) in block_weights.iter().zip(block_constants).zip(fields) {
-            let phi = field.potential;
-            if FAR {
-                let a_dot_w = map.back(&field.acceleration).dot(w);
-                af += k.x * a_dot_w;
-                acceleration_size += k.x_norm * a_dot_w.abs();
-            }
-            potential_size += phi.abs() * k.w_norm;
-            let relative = phi - reference;
-            f += w * relative;
-            size += relative.abs() * k.w_norm;
+        flux.add(&block.flux);
+        if FULL {
+            moment.add(&block.moment);
+            gradient_moment.add(&block.gradient_moment);
+            energy.add(block.energy);
         }
-        flux.add(&f);
-        acceleration_flux.add(&af);
+        acceleration_flux.add(&block.acceleration_flux);
     }
-    SolidSums {
-        potential_flux: flux.value(),
-        potential_flux_magnitude: size,
-        acceleration_flux: acceleration_flux.value(),
-        acceleration_flux_magnitude: acceleration_size,
-        potential_magnitude: potential_size,
-        ..SolidSums::default()
-    }
+    sizes.sums(
+        flux.value(),
+        moment.value(),
+        gradient_moment.value(),
+        energy.value(),
+        acceleration_flux.value(),
+    )
 }
 
 /// Force, torque (both forms) and energy of a homogeneous solid of density `density` whose

@@ -117,6 +117,7 @@
 //! and disks (Perram–Wertheim contact function, [`overlap`] docs), on the integration nodes and
 //! centroids for bodies of unknown shape.
 
+mod aimed;
 mod body;
 mod engine;
 mod error;

@@ -59,13 +59,21 @@ use surfgrav_quadrature::{GaussLegendre, Rule1D};
 /// The parametrisation of an ellipsoid's surface the fixed rules use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Parametrisation {
-    /// The founding paper's $(\varphi, z)$ form ([`crate::EllipsoidAzimuthHeight`]):
-    /// Gauss–Legendre in $z$. The default: measured faster.
+    /// The aimed form ([`Self::Aimed`]) for ellipsoids, except where the pose has both
+    /// mirror symmetries (the other body in X's equatorial plane and in a plane of symmetry):
+    /// there the azimuth–height form, whose tables are then quartered. The default.
     #[default]
+    Automatic,
+    /// The founding paper's $(\varphi, z)$ form ([`crate::EllipsoidAzimuthHeight`]):
+    /// Gauss–Legendre in $z$.
     AzimuthHeight,
     /// The smooth $(\theta, \varphi)$ form ([`crate::EllipsoidPolarAzimuth`]): Gauss–Legendre in
     /// $\theta$.
     PolarAzimuth,
+    /// For ellipsoids, polar angles about a pole aimed at the other body, clustered toward it
+    /// ([`super::aimed`]); other surfaces, and tables asked for directly, use the
+    /// azimuth–height form.
+    Aimed,
 }
 
 /// Clustering strengths $\varepsilon$ the tables are built with (index 0: uniform).
@@ -95,7 +103,9 @@ impl TransverseRatio {
                 let roundness = aspect.min(1.0 / aspect).powi(2);
                 let ah = 0.38 + 0.3 * s + 0.2 * roundness;
                 match parametrisation {
-                    Parametrisation::AzimuthHeight => ah,
+                    Parametrisation::AzimuthHeight
+                    | Parametrisation::Aimed
+                    | Parametrisation::Automatic => ah,
                     Parametrisation::PolarAzimuth => 1.5 * ah,
                 }
             }
@@ -262,7 +272,7 @@ fn ellipsoid_table(
     n_transverse: usize,
 ) -> Result<SurfaceNodes, InteractionError> {
     match key.parametrisation {
-        Parametrisation::AzimuthHeight => {
+        Parametrisation::AzimuthHeight | Parametrisation::Aimed | Parametrisation::Automatic => {
             let c = e.z_semi_axis();
             let (nodes, weights) = split_rule(n_transverse, 0.0, c, key.half_transverse)?;
             let rule = Rule1d::new(&nodes, &weights, Interval::new(-c, c)?)?;
