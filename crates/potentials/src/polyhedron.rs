@@ -48,6 +48,7 @@
 
 mod mesh;
 pub(crate) mod multipole;
+mod reach;
 mod validate;
 
 use std::f64::consts::PI;
@@ -60,6 +61,7 @@ use crate::error::{positive, representable, BodyError};
 use crate::{Field, Potential, Real, Region, Vec3};
 
 pub use mesh::{LengthUnit, Mesh};
+pub use reach::{REACH_DEGREE, REACH_RADII};
 pub use validate::MeshError;
 
 use multipole::Multipole;
@@ -115,6 +117,8 @@ pub struct Polyhedron {
     bounding_radius: Real,
     circumscribing_radius: Real,
     multipole: OnceLock<Multipole>,
+    /// The higher-degree expansion of [`reach`], built on first use.
+    reach: OnceLock<Multipole>,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -607,6 +611,7 @@ impl Geometry {
             bounding_radius: self.bounding_radius,
             circumscribing_radius: self.circumscribing_radius,
             multipole: OnceLock::new(),
+            reach: OnceLock::new(),
         }
     }
 }
