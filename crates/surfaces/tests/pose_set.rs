@@ -54,3 +54,51 @@ fn random_poses_certify_and_estimates_bound_true_errors() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+/// The requests of [`InteractionEngine::evaluate`] on the same set: a force-only and a wrench
+/// evaluation certify what they return (force; force and torques) within their estimates
+/// against the independent reference, leave out what was not asked for, and never cost more
+/// evaluations than the full interaction (they certify less on the same levels).
+#[test]
+fn requests_certify_what_they_return() {
+    use surfgrav_surfaces::interaction::Request;
+    let cases = pose_set(12, &[0.05, 0.2, 1.0, 5.0], 1);
+    let mut engine = InteractionEngine::default();
+    for case in &cases {
+        let (a, pa, b, pb) = (&case.a, &case.pose_a, &case.b, &case.pose_b);
+        let full = engine.interact(a, pa, b, pb).unwrap();
+        let (reference, _) = independent_reference(a, pa, b, pb, REFERENCE_TOLERANCE).unwrap();
+        let v = reference.potential_energy.abs();
+        let force_error = |f: &surfgrav_potentials::Vec3| {
+            (f - reference.force_on_a).norm() / reference.force_on_a.norm()
+        };
+        let force = engine.evaluate(a, pa, b, pb, Request::Force).unwrap();
+        assert!(force.torque_on_a.is_none() && force.potential_energy.is_none());
+        assert!(force.error_estimate <= TOLERANCE, "{}", case.label);
+        assert!(force.evaluations <= full.evaluations, "{}", case.label);
+        assert!(
+            force_error(&force.force_on_a) <= force.error_estimate + reference.error_estimate,
+            "{}: force-only error {:.2e} above its estimate {:.2e}",
+            case.label,
+            force_error(&force.force_on_a),
+            force.error_estimate
+        );
+        let wrench = engine.evaluate(a, pa, b, pb, Request::Wrench).unwrap();
+        assert!(wrench.potential_energy.is_none(), "{}", case.label);
+        assert!(wrench.error_estimate <= TOLERANCE, "{}", case.label);
+        assert!(wrench.evaluations <= full.evaluations, "{}", case.label);
+        let (ma, mb) = (wrench.torque_on_a.unwrap(), wrench.torque_on_b.unwrap());
+        let error = force_error(&wrench.force_on_a)
+            .max((ma - reference.torque_on_a).norm() / reference.torque_on_a.norm().max(v))
+            .max((mb - reference.torque_on_b).norm() / reference.torque_on_b.norm().max(v));
+        assert!(
+            error <= wrench.error_estimate + reference.error_estimate,
+            "{}: wrench error {error:.2e} above its estimate {:.2e}",
+            case.label,
+            wrench.error_estimate
+        );
+        let everything = engine.evaluate(a, pa, b, pb, Request::Everything).unwrap();
+        assert_eq!(everything.potential_energy, Some(full.potential_energy));
+        assert_eq!(everything.evaluations, full.evaluations);
+    }
+}

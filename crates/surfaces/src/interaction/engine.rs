@@ -260,6 +260,49 @@ pub struct ForceInteraction {
     pub error_estimate: Real,
 }
 
+/// What a caller needs from one evaluation ([`InteractionEngine::evaluate`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Request {
+    /// The force alone (translation stages): the fixed rules skip the torque and energy terms
+    /// of the node loop and certify the force.
+    Force,
+    /// The force and both torques (rigid-body stages): every term is summed (the energy is the
+    /// torques' scale in the error norm), and force and torques are certified.
+    Wrench,
+    /// Force, both torques and the mutual potential energy, all certified.
+    #[default]
+    Everything,
+}
+
+/// The result of [`InteractionEngine::evaluate`]: what the [`Request`] asked for (the rest is
+/// `None`); units and conventions as [`Interaction`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Evaluation {
+    /// What was asked for.
+    pub request: Request,
+    /// Force on A.
+    pub force_on_a: Vec3,
+    /// Force on B ($= -$`force_on_a`).
+    pub force_on_b: Vec3,
+    /// Torque on A about A's centroid ([`Request::Wrench`], [`Request::Everything`]).
+    pub torque_on_a: Option<Vec3>,
+    /// Torque on B about B's centroid ([`Request::Wrench`], [`Request::Everything`]).
+    pub torque_on_b: Option<Vec3>,
+    /// Mutual potential energy ([`Request::Everything`]).
+    pub potential_energy: Option<Real>,
+    /// How it was computed.
+    pub method: Method,
+    /// The body whose surface was integrated over (`None` for a closed form).
+    pub integrated_over: Option<Side>,
+    /// Potential (field) evaluations spent.
+    pub evaluations: usize,
+    /// Estimated relative error of what was asked for, in the norms of
+    /// [`Interaction::error_estimate`] (the nested and adaptive rules estimate everything).
+    pub error_estimate: Real,
+    /// The level of the returned value's table (fixed rules only).
+    pub level: Option<u16>,
+}
+
 /// The part of a result that the levels refine.
 #[derive(Debug, Clone, Copy)]
 struct Values {
@@ -271,8 +314,9 @@ struct Values {
     torque_form_gap: Real,
     /// Relative rounding error bound of this evaluation (see [`ROUNDING_PER_TERM`]).
     rounding: Real,
-    /// Only the force was computed (torques and energy are placeholders).
-    force_only: bool,
+    /// What was asked for: the node loop computed and the estimate certifies only that
+    /// (with [`Request::Force`], torques and energy are placeholders).
+    request: Request,
 }
 
 impl Values {
@@ -285,17 +329,20 @@ impl Values {
         let v = self.potential_energy.abs().max(Real::MIN_POSITIVE);
         let df = (self.force_on_a - other.force_on_a).norm()
             / self.force_on_a.norm().max(Real::MIN_POSITIVE);
-        if self.force_only {
+        if self.request == Request::Force {
             return df;
         }
-        let dv = (self.potential_energy - other.potential_energy).abs() / v;
         let dma = (self.torque_on_a - other.torque_on_a).norm() / self.torque_on_a.norm().max(v);
         let dmb = (self.torque_on_b - other.torque_on_b).norm() / self.torque_on_b.norm().max(v);
+        if self.request == Request::Wrench {
+            return df.max(dma).max(dmb);
+        }
+        let dv = (self.potential_energy - other.potential_energy).abs() / v;
         df.max(dv).max(dma).max(dmb)
     }
 
     fn form_discrepancy(&self, torque_scale: Real) -> Real {
-        if self.force_only {
+        if self.request == Request::Force {
             return 0.0;
         }
         self.torque_form_gap
@@ -410,8 +457,6 @@ pub struct InteractionEngine {
     nested_geometry: nested_rule::GeometryCache,
     /// The aimed rule's unit-sphere grids, kept ([`aimed::GridCache`]).
     aimed_grids: aimed::GridCache,
-    /// Set during [`InteractionEngine::force`]: the fixed rules sum and certify the force only.
-    force_only: bool,
 }
 
 fn check_pose(pose: &Pose, body: Side) -> Result<(), InteractionError> {
@@ -441,7 +486,9 @@ fn singular_radius(body: &Body) -> Real {
             ((s[2] - s[0]) * (s[2] + s[0])).sqrt()
         }
         BodyShape::Disk(l) => l.radius(),
-        BodyShape::Surface(_) | BodyShape::FieldOnly => body.bounding_radius(),
+        BodyShape::Surface(_) | BodyShape::FieldOnly | BodyShape::Mesh(_) => {
+            body.bounding_radius()
+        }
     }
 }
 
@@ -468,7 +515,6 @@ impl InteractionEngine {
             nested: NestedCubature::new(),
             nested_geometry: nested_rule::GeometryCache::default(),
             aimed_grids: aimed::GridCache::default(),
-            force_only: false,
         })
     }
 
@@ -477,10 +523,10 @@ impl InteractionEngine {
         &self.options
     }
 
-    /// The force only, for integrator stages that need nothing else: the fixed rules then
-    /// sum and certify the force alone (the torque and energy terms of the node loop are
-    /// skipped, and only the force must meet the tolerance). Other methods compute everything
-    /// and return the force.
+    /// The force only, for integrator stages that need nothing else
+    /// ([`Self::evaluate`] with [`Request::Force`]): the fixed rules then sum and certify the
+    /// force alone (the torque and energy terms of the node loop are skipped, and only the
+    /// force must meet the tolerance). Other methods compute everything and return the force.
     ///
     /// # Errors
     /// As [`Self::interact`].
@@ -491,10 +537,8 @@ impl InteractionEngine {
         b: &Body,
         pose_b: &Pose,
     ) -> Result<ForceInteraction, InteractionError> {
-        self.force_only = true;
-        let result = self.interact(a, pose_a, b, pose_b);
-        self.force_only = false;
-        result.map(|r| ForceInteraction {
+        let r = self.compute(a, pose_a, b, pose_b, Request::Force)?;
+        Ok(ForceInteraction {
             force_on_a: r.force_on_a,
             force_on_b: r.force_on_b,
             method: r.method,
@@ -504,7 +548,8 @@ impl InteractionEngine {
         })
     }
 
-    /// Force, torque and energy of A (at `pose_a`) and B (at `pose_b`).
+    /// Force, torque and energy of A (at `pose_a`) and B (at `pose_b`) ([`Self::evaluate`] with
+    /// [`Request::Everything`]).
     ///
     /// # Errors
     /// Non-finite poses, overlapping or touching bodies, bodies with different G, no surface to
@@ -517,6 +562,65 @@ impl InteractionEngine {
         b: &Body,
         pose_b: &Pose,
     ) -> Result<Interaction, InteractionError> {
+        self.compute(a, pose_a, b, pose_b, Request::Everything)
+    }
+
+    /// What `request` asks for, of A (at `pose_a`) and B (at `pose_b`): the fixed rules sum
+    /// and certify only that; the nested and adaptive rules compute and certify everything.
+    /// A quantity not asked for is `None` in the result.
+    ///
+    /// ```
+    /// use surfgrav_potentials::{Pose, Spheroid, Vec3};
+    /// use surfgrav_surfaces::interaction::{Body, InteractionEngine, Request};
+    ///
+    /// let body = || Body::spheroid(Spheroid::new(1.0, 0.25, 1.0).unwrap()).unwrap();
+    /// let (a, b) = (body(), body());
+    /// // B tilted and lifted: a torque on each body.
+    /// let pose_b = Pose::new(Vec3::new(2.4, 0.3, 0.5), Vec3::new(0.3, -0.2, 0.4));
+    /// let mut engine = InteractionEngine::default();
+    /// let wrench = engine.evaluate(&a, &Pose::identity(), &b, &pose_b, Request::Wrench)?;
+    /// let full = engine.interact(&a, &Pose::identity(), &b, &pose_b)?;
+    /// let torque = wrench.torque_on_a.expect("a wrench has torques");
+    /// assert!((torque - full.torque_on_a).norm() <= 1e-11 * full.potential_energy.abs());
+    /// assert!(wrench.potential_energy.is_none() && wrench.error_estimate <= 1e-12);
+    /// # Ok::<(), surfgrav_surfaces::interaction::InteractionError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Self::interact`].
+    pub fn evaluate(
+        &mut self,
+        a: &Body,
+        pose_a: &Pose,
+        b: &Body,
+        pose_b: &Pose,
+        request: Request,
+    ) -> Result<Evaluation, InteractionError> {
+        let r = self.compute(a, pose_a, b, pose_b, request)?;
+        let torques = request != Request::Force;
+        Ok(Evaluation {
+            request,
+            force_on_a: r.force_on_a,
+            force_on_b: r.force_on_b,
+            torque_on_a: torques.then_some(r.torque_on_a),
+            torque_on_b: torques.then_some(r.torque_on_b),
+            potential_energy: (request == Request::Everything).then_some(r.potential_energy),
+            method: r.method,
+            integrated_over: r.integrated_over,
+            evaluations: r.evaluations,
+            error_estimate: r.error_estimate,
+            level: r.level,
+        })
+    }
+
+    fn compute(
+        &mut self,
+        a: &Body,
+        pose_a: &Pose,
+        b: &Body,
+        pose_b: &Pose,
+        request: Request,
+    ) -> Result<Interaction, InteractionError> {
         check_pose(pose_a, Side::A)?;
         check_pose(pose_b, Side::B)?;
         let (ga, gb) = (
@@ -525,6 +629,17 @@ impl InteractionEngine {
         );
         if ga != gb {
             return Err(InteractionError::GravitationalConstantMismatch { a: ga, b: gb });
+        }
+        if a.as_polyhedron().is_some() || b.as_polyhedron().is_some() {
+            // Meshes have their own rules, contact test and choice of surface.
+            return super::mesh_pair::interact(
+                &self.options,
+                request == Request::Force,
+                a,
+                pose_a,
+                b,
+                pose_b,
+            );
         }
         let separation = (pose_b.position - pose_a.position).norm();
         let exact = contact(a, pose_a, b, pose_b);
@@ -550,26 +665,24 @@ impl InteractionEngine {
         if placement.node_check {
             check_centroids(x, pose_x, y, pose_y, separation)?;
         }
+        let budget = self.options.max_evaluations;
         match self.options.method {
-            MethodChoice::Adaptive => self.adaptive(x, y, &placement),
+            MethodChoice::Adaptive => self.adaptive(x, y, &placement, budget),
             MethodChoice::Nested => self.nested(x, y, &placement),
-            MethodChoice::FixedLevel(transverse) => self.single_level(x, y, &placement, transverse),
-            MethodChoice::FixedRules => self.ladder(x, y, &placement),
-            MethodChoice::Automatic => match self.ladder(x, y, &placement) {
+            MethodChoice::FixedLevel(transverse) => {
+                self.single_level(x, y, &placement, transverse, request)
+            }
+            MethodChoice::FixedRules => self.ladder(x, y, &placement, request),
+            MethodChoice::Automatic => match self.ladder(x, y, &placement, request) {
                 // The fallback: the ladder ran out of levels (not of budget, not into
                 // rounding); the adaptive rule gets the rest of the budget and the better
                 // result is kept. (Measured, the ladder is cheaper in every case tried, even
                 // 0.003 from a disk's rim, so this is a safety net.)
                 Err(InteractionError::ToleranceNotMet { best, .. })
                     if best.level == Some(MAX_TRANSVERSE)
-                        && self.options.max_evaluations - best.evaluations
-                            >= MINIMUM_EVALUATION_BUDGET =>
+                        && budget - best.evaluations >= MINIMUM_EVALUATION_BUDGET =>
                 {
-                    let budget = self.options.max_evaluations;
-                    self.options.max_evaluations = budget - best.evaluations;
-                    let adaptive = self.adaptive(x, y, &placement);
-                    self.options.max_evaluations = budget;
-                    match adaptive {
+                    match self.adaptive(x, y, &placement, budget - best.evaluations) {
                         Ok(mut r) => {
                             r.evaluations += best.evaluations;
                             Ok(r)
@@ -803,6 +916,7 @@ impl InteractionEngine {
         y: &Body,
         p: &Placement,
         transverse: u16,
+        request: Request,
     ) -> Result<Interaction, InteractionError> {
         let transverse = transverse.clamp(1, MAX_TRANSVERSE);
         let table = x.table(self.table_key(p, transverse))?;
@@ -819,7 +933,7 @@ impl InteractionEngine {
             Side::A => Method::SurfaceOverA,
             Side::B => Method::SurfaceOverB,
         };
-        evaluate_table(x, y, &table, p, self.force_only).finish(
+        evaluate_table(x, y, &table, p, request).finish(
             method,
             Some(p.side),
             table.len(),
@@ -833,12 +947,12 @@ impl InteractionEngine {
         x: &Body,
         y: &Body,
         p: &Placement,
+        request: Request,
     ) -> Result<Interaction, InteractionError> {
         if let (Some(aim), BodyShape::Solid(e)) = (p.aim, x.shape()) {
-            return self.aimed_ladder(e, &aim, x, y, p);
+            return self.aimed_ladder(e, &aim, x, y, p, request);
         }
         let key = |transverse: u16| self.table_key(p, transverse);
-        let force_only = self.force_only;
         run_ladder(
             &self.ladder_settings(),
             p,
@@ -849,7 +963,7 @@ impl InteractionEngine {
                 if p.node_check {
                     check_nodes(&table, y, &p.map)?;
                 }
-                Ok((evaluate_table(x, y, &table, p, force_only), table.len()))
+                Ok((evaluate_table(x, y, &table, p, request), table.len()))
             },
         )
     }
@@ -871,6 +985,7 @@ impl InteractionEngine {
         x: &Body,
         y: &Body,
         p: &Placement,
+        request: Request,
     ) -> Result<Interaction, InteractionError> {
         // The aimed nodes have no mirror symmetry.
         let p = &Placement {
@@ -879,7 +994,6 @@ impl InteractionEngine {
             ..*p
         };
         let start = aim.start;
-        let force_only = self.force_only;
         let settings = LadderSettings {
             jump: true,
             ..self.ladder_settings()
@@ -892,7 +1006,7 @@ impl InteractionEngine {
             |level| aimed::grid_key(level, aim).size(),
             |level| {
                 let grid = grids.get(aimed::grid_key(level, aim))?;
-                let sums = match (p.far, force_only) {
+                let sums = match (p.far, request == Request::Force) {
                     (true, true) => with_field!(&y.field, |f| aimed::aimed_sums::<_, true, false>(
                         e, &grid, aim, f, &p.map
                     )),
@@ -909,7 +1023,7 @@ impl InteractionEngine {
                     ),
                 };
                 let mut values = solid_values(sums, x.density, p);
-                values.force_only = force_only;
+                values.request = request;
                 Ok((values, grid.len()))
             },
         )
@@ -924,10 +1038,10 @@ impl InteractionEngine {
         p: &Placement,
     ) -> Result<Interaction, InteractionError> {
         let BodyShape::Solid(e) = x.shape() else {
-            return self.ladder(x, y, p);
+            return self.ladder(x, y, p, Request::Everything);
         };
         if p.node_check {
-            return self.ladder(x, y, p);
+            return self.ladder(x, y, p, Request::Everything);
         }
         let tolerance = self.options.relative_tolerance;
         let method = match p.side {
@@ -1048,13 +1162,14 @@ impl InteractionEngine {
         x: &Body,
         y: &Body,
         p: &Placement,
+        budget: usize,
     ) -> Result<Interaction, InteractionError> {
         let tolerance = self.options.relative_tolerance;
         let mut request = 0.25 * tolerance;
         let mut total = 0usize;
         let mut best: Option<Interaction> = None;
         for _ in 0..3 {
-            let remaining = self.options.max_evaluations.saturating_sub(total);
+            let remaining = budget.saturating_sub(total);
             if remaining < MINIMUM_EVALUATION_BUDGET {
                 break;
             }
@@ -1093,7 +1208,7 @@ impl InteractionEngine {
                 Err(not_met(tolerance, best))
             }
             None => Err(InteractionError::BudgetTooSmall {
-                max_evaluations: self.options.max_evaluations,
+                max_evaluations: budget,
                 minimum: MINIMUM_EVALUATION_BUDGET,
             }),
         }
@@ -1271,7 +1386,7 @@ fn assemble(
         potential_energy: energy,
         torque_form_gap: (m_x - m_x2).norm(),
         rounding: 0.0,
-        force_only: false,
+        request: Request::Everything,
     }
 }
 
@@ -1327,8 +1442,9 @@ fn evaluate_table(
     y: &Body,
     table: &NodeTable,
     p: &Placement,
-    force_only: bool,
+    request: Request,
 ) -> Values {
+    let force_only = request == Request::Force;
     match table {
         NodeTable::Solid(t) => {
             let sums = match (p.far, force_only) {
@@ -1354,7 +1470,7 @@ fn evaluate_table(
                 }
             };
             let mut values = solid_values(sums, x.density, p);
-            values.force_only = force_only;
+            values.request = request;
             values
         }
         NodeTable::Lamina(t) => {
@@ -1527,7 +1643,7 @@ fn analytic_point(
             potential_energy: energy,
             torque_form_gap: 0.0,
             rounding: 0.0,
-            force_only: false,
+            request: Request::Everything,
         }
     } else {
         Values {
@@ -1537,7 +1653,7 @@ fn analytic_point(
             potential_energy: energy,
             torque_form_gap: 0.0,
             rounding: 0.0,
-            force_only: false,
+            request: Request::Everything,
         }
     };
     values.finish(
@@ -1584,7 +1700,7 @@ fn analytic_disk_pair(
         potential_energy: interaction.potential_energy,
         torque_form_gap: 0.0,
         rounding: 0.0,
-        force_only: false,
+        request: Request::Everything,
     };
     values
         .finish(
@@ -1648,7 +1764,7 @@ fn adaptive_values(
             solid_adaptive(integrator, s.as_ref(), rect, x, y, p, distance, density)
         }
         BodyShape::Disk(l) => lamina_adaptive(integrator, l.radius(), y, p, distance, density),
-        BodyShape::Point | BodyShape::FieldOnly => Err(InteractionError::NoSurface {
+        BodyShape::Point | BodyShape::FieldOnly | BodyShape::Mesh(_) => Err(InteractionError::NoSurface {
             reason: "the body chosen to integrate over has no surface",
         }),
     }

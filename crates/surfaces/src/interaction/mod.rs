@@ -129,8 +129,9 @@ pub mod work_precision;
 
 pub use body::{Body, BodyShape};
 pub use engine::{
-    ForceInteraction, Interaction, InteractionEngine, InteractionOptions, Method, MethodChoice,
-    SurfaceChoice, ANALYTIC_RELATIVE_ERROR, CANCELLATION_RATIO, FAR_FIELD_RATIO, ROUNDING_PER_TERM,
+    Evaluation, ForceInteraction, Interaction, InteractionEngine, InteractionOptions, Method,
+    MethodChoice, Request, SurfaceChoice, ANALYTIC_RELATIVE_ERROR, CANCELLATION_RATIO,
+    FAR_FIELD_RATIO, ROUNDING_PER_TERM,
 };
 pub use error::{InteractionError, Side};
 pub use kernel::{
