@@ -6,6 +6,8 @@
 //! - interactions ([`interaction`]): `interact` and `interact_batch`;
 //! - simulations ([`simulation`]): `Simulation` (two bodies, an integrator by name,
 //!   `integrate(t_end, interval=None)` returning a `Trajectory` of arrays);
+//! - scenes ([`scene`]): `Scene.load`, `Scene.preset`, `Scene.parse`, run as `surfgrav run`
+//!   runs them (`SceneRun`: the CLI's summary and the trajectory's rows).
 //!
 //! Conventions are the workspace's (README): Φ < 0, a = −∇Φ, V < 0, orientations body → world.
 //! Computation runs with the GIL released; errors are Python exceptions ([`errors`]), never a
@@ -17,6 +19,7 @@ mod arrays;
 mod bodies;
 mod errors;
 mod interaction;
+mod scene;
 mod simulation;
 
 /// The compiled part of the `surfgrav` package.
@@ -36,6 +39,8 @@ fn _surfgrav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<interaction::BatchInteraction>()?;
     m.add_class::<simulation::Simulation>()?;
     m.add_class::<simulation::Trajectory>()?;
+    m.add_class::<scene::Scene>()?;
+    m.add_class::<scene::SceneRun>()?;
     m.add_function(wrap_pyfunction!(interaction::interact, m)?)?;
     m.add_function(wrap_pyfunction!(interaction::interact_batch, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
