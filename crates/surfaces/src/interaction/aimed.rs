@@ -277,7 +277,9 @@ fn singular_set(y: &Body) -> SingularSet {
             }
         }
         BodyShape::Disk(l) => SingularSet::Circle(l.radius()),
-        BodyShape::Surface(_) | BodyShape::FieldOnly => SingularSet::Ball(y.bounding_radius()),
+        BodyShape::Surface(_) | BodyShape::FieldOnly | BodyShape::Mesh(_) => {
+            SingularSet::Ball(y.bounding_radius())
+        }
     }
 }
 

@@ -4,12 +4,13 @@
 
 use super::error::InteractionError;
 use super::rules::{build_table, NodeTable, TableKey};
-use crate::{Ellipsoid, Lamina, Real, Surface, Vec3};
+use crate::{Ellipsoid, Lamina, Real, Surface, TriangleMesh, Vec3};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use surfgrav_potentials as potentials;
 use surfgrav_potentials::{
-    InertiaError, InertiaTensor, Mat3, PointMass, Potential, Sphere, Spheroid, UniformDisk,
+    InertiaError, InertiaTensor, Mat3, Mesh, PointMass, Polyhedron, Potential, Sphere, Spheroid,
+    UniformDisk,
 };
 
 /// The geometry of a body for the engine: what can be integrated over, and what its overlap
@@ -28,6 +29,9 @@ pub enum BodyShape {
     /// The closed surface of a homogeneous solid of any shape, parametrised over a rectangle
     /// with exactly one periodic direction (see [`Surface`]).
     Surface(Arc<dyn Surface>),
+    /// The closed triangle mesh of a homogeneous polyhedron (body frame: centroid at the
+    /// origin), integrated face by face ([`crate::mesh`], [`super::mesh_pair`]).
+    Mesh(Arc<TriangleMesh>),
     /// No surface is known: the body only provides its field.
     FieldOnly,
 }
@@ -96,6 +100,8 @@ pub struct Body {
     pub(crate) density: Real,
     pub(crate) bounding_radius: Real,
     inertia: Option<InertiaTensor>,
+    /// The polyhedron whose mesh is [`BodyShape::Mesh`] (its field is also `field`).
+    pub(crate) polyhedron: Option<Arc<Polyhedron>>,
     tables: Mutex<HashMap<TableKey, NodeTable>>,
 }
 
@@ -122,6 +128,7 @@ impl Clone for Body {
             density: self.density,
             bounding_radius: self.bounding_radius,
             inertia: self.inertia,
+            polyhedron: self.polyhedron.clone(),
             tables: Mutex::new(tables),
         }
     }
@@ -152,6 +159,7 @@ impl Body {
                 });
                 (mass / volume, s.bounding_radius())
             }
+            BodyShape::Mesh(m) => (mass / m.volume(), m.bounding_radius()),
         };
         let needs_density = !matches!(shape, BodyShape::Point | BodyShape::FieldOnly);
         if needs_density && !(density.is_finite() && density > 0.0) {
@@ -166,6 +174,7 @@ impl Body {
             density,
             bounding_radius: potential_radius.max(shape_radius),
             inertia,
+            polyhedron: None,
             tables: Mutex::new(HashMap::new()),
         })
     }
@@ -179,6 +188,7 @@ impl Body {
             density: Real::NAN,
             bounding_radius: 0.0,
             inertia: None,
+            polyhedron: None,
             tables: Mutex::new(HashMap::new()),
         }
     }
@@ -216,6 +226,48 @@ impl Body {
     pub fn disk(body: UniformDisk) -> Result<Self, InteractionError> {
         let shape = BodyShape::Disk(Lamina::new(body.radius())?);
         Self::assemble(SourceField::Disk(body), shape, FieldSymmetry::Axial)
+    }
+
+    /// A homogeneous polyhedron, integrated over as its triangle mesh and acting by its
+    /// Werner–Scheeres field (and, far enough away, by its certified exterior expansion at the
+    /// engine's tolerance; [`super::mesh_pair`]). The body frame is the polyhedron's own,
+    /// moved to its centroid if the mesh's origin is elsewhere (by more than $10^{-12}$ of its
+    /// size; the mesh is then rebuilt and validated again); the orientation is kept.
+    ///
+    /// # Errors
+    /// A mesh that no longer validates after the move (it cannot, for a valid one).
+    pub fn polyhedron(body: Polyhedron) -> Result<Self, InteractionError> {
+        let centroid = body.centroid();
+        let body = if centroid.norm() > 1e-12 * body.circumscribing_radius() {
+            let mesh = Mesh {
+                vertices: body.vertices().iter().map(|v| v - centroid).collect(),
+                faces: body.faces().iter().map(|f| f.map(|i| i as usize)).collect(),
+            };
+            Polyhedron::with_mass(&mesh, body.mass())
+                .and_then(|p| {
+                    p.with_gravitational_constant(body.gravitational_constant())
+                        .map_err(Into::into)
+                })
+                .map_err(|_| InteractionError::NonFiniteResult {
+                    what: "polyhedron moved to its centroid",
+                })?
+        } else {
+            body
+        };
+        let mesh = TriangleMesh::new(body.vertices().to_vec(), body.faces().to_vec());
+        let body = Arc::new(body);
+        let mut out = Self::assemble(
+            SourceField::Custom(body.clone()),
+            BodyShape::Mesh(Arc::new(mesh)),
+            FieldSymmetry::None,
+        )?;
+        out.polyhedron = Some(body);
+        Ok(out)
+    }
+
+    /// The polyhedron of a body built by [`Body::polyhedron`].
+    pub fn as_polyhedron(&self) -> Option<&Polyhedron> {
+        self.polyhedron.as_deref()
     }
 
     /// Any potential with the shape of the matter that makes it. The shape must describe a
@@ -288,7 +340,7 @@ impl Body {
     pub fn has_surface(&self) -> bool {
         matches!(
             self.shape,
-            BodyShape::Solid(_) | BodyShape::Disk(_) | BodyShape::Surface(_)
+            BodyShape::Solid(_) | BodyShape::Disk(_) | BodyShape::Surface(_) | BodyShape::Mesh(_)
         )
     }
 

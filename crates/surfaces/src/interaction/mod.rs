@@ -122,6 +122,7 @@ mod body;
 mod engine;
 mod error;
 mod kernel;
+pub mod mesh_pair;
 pub mod nested;
 pub mod overlap;
 pub mod rules;

@@ -43,7 +43,7 @@ fn shape_matrix(body: &Body, pose: &Pose) -> Option<Matrix3<Real>> {
         BodyShape::Point => Vec3::zeros(),
         BodyShape::Solid(e) => e.semi_axes().component_mul(&e.semi_axes()),
         BodyShape::Disk(l) => Vec3::new(l.radius() * l.radius(), l.radius() * l.radius(), 0.0),
-        BodyShape::Surface(_) | BodyShape::FieldOnly => return None,
+        BodyShape::Surface(_) | BodyShape::FieldOnly | BodyShape::Mesh(_) => return None,
     };
     let r = pose.rotation.to_rotation_matrix();
     Some(r.matrix() * Matrix3::from_diagonal(&diag) * r.matrix().transpose())

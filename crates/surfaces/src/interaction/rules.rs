@@ -173,7 +173,7 @@ pub(crate) fn table_size(shape: &BodyShape, key: &TableKey) -> usize {
         BodyShape::Solid(_) => azimuth * if key.half_transverse { t } else { 2 * t },
         BodyShape::Disk(_) => azimuth * (t + 1),
         BodyShape::Surface(_) => azimuth * t,
-        BodyShape::Point | BodyShape::FieldOnly => 0,
+        BodyShape::Point | BodyShape::FieldOnly | BodyShape::Mesh(_) => 0,
     }
 }
 
@@ -239,9 +239,11 @@ pub(crate) fn build_table(shape: &BodyShape, key: TableKey) -> Result<NodeTable,
         BodyShape::Surface(surface) => Ok(NodeTable::Solid(Arc::new(SolidTable::new(
             surface_table(surface.as_ref(), azimuth, n_transverse)?,
         )))),
-        BodyShape::Point | BodyShape::FieldOnly => Err(InteractionError::NoSurface {
-            reason: "a node table was requested for a body without a surface",
-        }),
+        BodyShape::Point | BodyShape::FieldOnly | BodyShape::Mesh(_) => {
+            Err(InteractionError::NoSurface {
+                reason: "a node table was requested for a body without a surface",
+            })
+        }
     }
 }
 

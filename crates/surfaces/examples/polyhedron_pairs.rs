@@ -1,0 +1,183 @@
+//! The issue-13 targets, certified 1e-10: the Didymos standard pair (1,996-face radar primary
+//! with the triaxial secondary 103.6778 × 79.7526 × 66.4605 m, both 2103.98576788771879 kg/m³,
+//! 1180 m apart, G = 6.67408e-11) and the KW4 pair (Alpha 9168 faces at 1970 kg/m³, Beta 2292
+//! faces at 2810 kg/m³, 2540 m apart). Prints, per pair and surface, the time per evaluation,
+//! the field evaluations, the estimate, and the error against a reference at 1e-13 over the
+//! same surface and over the other surface.
+//!
+//! `cargo run --release -p surfgrav-surfaces --example polyhedron_pairs`
+
+use std::path::PathBuf;
+use std::time::Instant;
+use surfgrav_potentials::{Ellipsoid, LengthUnit, Mesh, Polyhedron, Pose, Vec3};
+use surfgrav_surfaces::interaction::{
+    Body, Interaction, InteractionEngine, InteractionOptions, SurfaceChoice,
+};
+
+const G: f64 = 6.67408e-11;
+
+fn shapes() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../data/shapes")
+}
+
+fn error(r: &Interaction, reference: &Interaction) -> f64 {
+    let v = reference.potential_energy.abs();
+    let df = (r.force_on_a - reference.force_on_a).norm() / reference.force_on_a.norm();
+    let dv = (r.potential_energy - reference.potential_energy).abs() / v;
+    let dma = (r.torque_on_a - reference.torque_on_a).norm() / reference.torque_on_a.norm().max(v);
+    let dmb = (r.torque_on_b - reference.torque_on_b).norm() / reference.torque_on_b.norm().max(v);
+    df.max(dv).max(dma).max(dmb)
+}
+
+fn run(name: &str, a: &Body, b: &Body, pose_b: &Pose) {
+    let pose_a = Pose::identity();
+    for surface in [SurfaceChoice::Automatic, SurfaceChoice::A, SurfaceChoice::B] {
+        let options = |tol: f64, surface| InteractionOptions {
+            relative_tolerance: tol,
+            surface,
+            ..InteractionOptions::default()
+        };
+        let mut engine = InteractionEngine::new(options(1e-10, surface)).unwrap();
+        let first = Instant::now();
+        let r = match engine.interact(a, &pose_a, b, pose_b) {
+            Ok(r) => r,
+            Err(e) => {
+                println!("{name} {surface:?}: {e}");
+                continue;
+            }
+        };
+        let first = first.elapsed();
+        let repeats = 5;
+        let t = Instant::now();
+        for _ in 0..repeats {
+            engine.interact(a, &pose_a, b, pose_b).unwrap();
+        }
+        let per = t.elapsed() / repeats;
+        let mut reference = InteractionEngine::new(options(1e-13, surface)).unwrap();
+        let fine = reference.interact(a, &pose_a, b, pose_b);
+        let mut other = InteractionEngine::new(options(
+            1e-13,
+            match r.integrated_over {
+                Some(surfgrav_surfaces::interaction::Side::A) => SurfaceChoice::B,
+                _ => SurfaceChoice::A,
+            },
+        ))
+        .unwrap();
+        let across = other.interact(a, &pose_a, b, pose_b);
+        println!(
+            "{name} {surface:?}: over {:?} ({}), {:.2} ms per evaluation (first {:.1} ms), {} evaluations, level {:?}, estimate {:.2e}",
+            r.integrated_over,
+            r.method,
+            per.as_secs_f64() * 1e3,
+            first.as_secs_f64() * 1e3,
+            r.evaluations,
+            r.level,
+            r.error_estimate
+        );
+        match fine {
+            Ok(f) => println!(
+                "    vs 1e-13 same surface: {:.2e} (its estimate {:.1e}, {} evaluations)",
+                error(&r, &f),
+                f.error_estimate,
+                f.evaluations
+            ),
+            Err(e) => println!("    reference same surface: {e}"),
+        }
+        match across {
+            Ok(f) => println!(
+                "    vs 1e-13 other surface: {:.2e}; V_AB - V_BA: {:.2e} relative; F {:?} M_A {:?} V {:e}",
+                error(&r, &f),
+                (r.potential_energy - f.potential_energy).abs() / f.potential_energy.abs(),
+                r.force_on_a.as_slice(),
+                r.torque_on_a.as_slice(),
+                r.potential_energy
+            ),
+            Err(e) => println!("    reference other surface: {e}"),
+        }
+    }
+}
+
+fn main() {
+    let didymos = Mesh::read_vertex_facet_csv(
+        shapes().join("Didymos_A_vert_met.csv"),
+        shapes().join("Didymos_A_facet.csv"),
+        LengthUnit::Metres,
+    )
+    .unwrap();
+    // The published 2103.98576788771879 kg/m³ to double precision.
+    let density = 2_103.985_767_887_719;
+    let primary = Polyhedron::with_density(&didymos, density)
+        .unwrap()
+        .with_gravitational_constant(G)
+        .unwrap();
+    println!(
+        "Didymos: {} faces, circumscribing radius {:.1} m",
+        primary.faces().len(),
+        primary.circumscribing_radius()
+    );
+    let primary = Body::polyhedron(primary).unwrap();
+    let secondary = Body::ellipsoid(
+        Ellipsoid::with_density(103.6778, 79.7526, 66.4605, density)
+            .unwrap()
+            .with_gravitational_constant(G)
+            .unwrap(),
+    )
+    .unwrap();
+    let pose = Pose::new(Vec3::new(1180.0, 0.0, 0.0), Vec3::zeros());
+    if std::env::args().any(|a| a == "--levels") {
+        levels("Didymos", &primary, &secondary, &pose, SurfaceChoice::A);
+    }
+    run("Didymos", &primary, &secondary, &pose);
+
+    let alpha = Mesh::read_obj(shapes().join("kw4_alpha.obj"), LengthUnit::Kilometres).unwrap();
+    let beta = Mesh::read_obj(shapes().join("kw4_beta.obj"), LengthUnit::Kilometres).unwrap();
+    let alpha = Polyhedron::with_density(&alpha, 1970.0)
+        .unwrap()
+        .with_gravitational_constant(G)
+        .unwrap();
+    let beta = Polyhedron::with_density(&beta, 2810.0)
+        .unwrap()
+        .with_gravitational_constant(G)
+        .unwrap();
+    println!(
+        "KW4: Alpha R = {:.1} m, Beta R = {:.1} m",
+        alpha.circumscribing_radius(),
+        beta.circumscribing_radius()
+    );
+    let alpha = Body::polyhedron(alpha).unwrap();
+    let beta = Body::polyhedron(beta).unwrap();
+    let pose = Pose::new(Vec3::new(2540.0, 0.0, 0.0), Vec3::zeros());
+    if std::env::args().any(|a| a == "--levels") {
+        levels("KW4", &alpha, &beta, &pose, SurfaceChoice::B);
+        levels("KW4", &alpha, &beta, &pose, SurfaceChoice::A);
+    }
+    run("KW4", &alpha, &beta, &pose);
+}
+
+#[allow(dead_code)]
+pub fn levels(name: &str, a: &Body, b: &Body, pose_b: &Pose, surface: SurfaceChoice) {
+    let pose_a = Pose::identity();
+    let mut reference = InteractionEngine::new(InteractionOptions {
+        relative_tolerance: 1e-13,
+        surface,
+        ..InteractionOptions::default()
+    })
+    .unwrap();
+    let reference = reference.interact(a, &pose_a, b, pose_b).unwrap();
+    for level in 0..5u16 {
+        let mut e = InteractionEngine::new(InteractionOptions {
+            method: surfgrav_surfaces::interaction::MethodChoice::FixedLevel(level),
+            surface,
+            ..InteractionOptions::default()
+        })
+        .unwrap();
+        let t = Instant::now();
+        let r = e.interact(a, &pose_a, b, pose_b).unwrap();
+        println!(
+            "  {name} {surface:?} level {level}: {} evaluations, {:.1} ms, true error {:.2e}",
+            r.evaluations,
+            t.elapsed().as_secs_f64() * 1e3,
+            error(&r, &reference)
+        );
+    }
+}
