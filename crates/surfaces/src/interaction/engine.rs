@@ -490,7 +490,7 @@ fn singular_radius(body: &Body) -> Real {
             ((s[2] - s[0]) * (s[2] + s[0])).sqrt()
         }
         BodyShape::Disk(l) => l.radius(),
-        BodyShape::Surface(_) | BodyShape::FieldOnly => body.bounding_radius(),
+        BodyShape::Surface(_) | BodyShape::FieldOnly | BodyShape::Mesh(_) => body.bounding_radius(),
     }
 }
 
@@ -631,6 +631,17 @@ impl InteractionEngine {
         );
         if ga != gb {
             return Err(InteractionError::GravitationalConstantMismatch { a: ga, b: gb });
+        }
+        if a.as_polyhedron().is_some() || b.as_polyhedron().is_some() {
+            // Meshes have their own rules, contact test and choice of surface.
+            return super::mesh_pair::interact(
+                &self.options,
+                request == Request::Force,
+                a,
+                pose_a,
+                b,
+                pose_b,
+            );
         }
         let separation = (pose_b.position - pose_a.position).norm();
         let exact = contact(a, pose_a, b, pose_b);
@@ -1766,9 +1777,11 @@ fn adaptive_values(
             solid_adaptive(integrator, s.as_ref(), rect, x, y, p, distance, density)
         }
         BodyShape::Disk(l) => lamina_adaptive(integrator, l.radius(), y, p, distance, density),
-        BodyShape::Point | BodyShape::FieldOnly => Err(InteractionError::NoSurface {
-            reason: "the body chosen to integrate over has no surface",
-        }),
+        BodyShape::Point | BodyShape::FieldOnly | BodyShape::Mesh(_) => {
+            Err(InteractionError::NoSurface {
+                reason: "the body chosen to integrate over has no surface",
+            })
+        }
     }
 }
 
