@@ -9,7 +9,8 @@
 //! axis 3.2° off the line of centres, the secondary's along it; spins 2.2728 and 0.3611 rad/h
 //! about the c axes (the secondary's is synchronous: n = 0.3607 rad/h).
 //!
-//! `cargo run --release -p surfgrav-dynamics --example kw4_ellipsoids [orbits]`
+//! `cargo run --release -p surfgrav-dynamics --example kw4_ellipsoids [orbits | toml]` (`toml`
+//! prints the initial state as scene-file keys: the `kw4-ellipsoids` preset's numbers)
 
 use std::time::Instant;
 use surfgrav_dynamics::{
@@ -85,7 +86,23 @@ fn error(s: &TwoBodyState, reference: &TwoBodyState) -> (Real, Real) {
     (position, attitude)
 }
 
+/// Prints the initial state as scene-file body keys (the `kw4-ellipsoids` preset's numbers).
+fn print_bodies(start: &TwoBodyState) {
+    for (name, b) in [("body_a", &start.body_a), ("body_b", &start.body_b)] {
+        let v = |x: Vec3| format!("[{:?}, {:?}, {:?}]", x.x, x.y, x.z);
+        println!("[{name}]");
+        println!("position = {}", v(b.position));
+        println!("velocity = {}", v(b.velocity));
+        println!("orientation = {}", v(b.orientation.scaled_axis()));
+        println!("angular_velocity = {}\n", v(b.angular_velocity));
+    }
+}
+
 fn main() {
+    if std::env::args().nth(1).as_deref() == Some("toml") {
+        print_bodies(&scene().1);
+        return;
+    }
     let orbits: Real = std::env::args()
         .nth(1)
         .and_then(|a| a.parse().ok())

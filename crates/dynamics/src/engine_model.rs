@@ -63,7 +63,7 @@ use std::time::{Duration, Instant};
 use surfgrav_potentials::{InertiaTensor, Pose, Real, Vec3};
 use surfgrav_surfaces::interaction::{
     Body, BodyShape, Interaction, InteractionEngine, InteractionError as EngineError,
-    InteractionOptions,
+    InteractionOptions, Request,
 };
 use thiserror::Error;
 
@@ -393,12 +393,17 @@ impl InteractionModel for EngineModel {
     fn inertia_b(&self) -> Option<InertiaTensor> {
         self.body_b.inertia().copied()
     }
+    /// One engine pass for the force and both torques ([`Request::Wrench`]: all three
+    /// certified, the energy not asked for).
     fn wrench(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Wrench, InteractionError> {
-        let i = self.evaluate(pose_a, pose_b)?;
+        let e = self
+            .engine()
+            .evaluate(&self.body_a, pose_a, &self.body_b, pose_b, Request::Wrench)
+            .map_err(|e| self.map_error(e, pose_a, pose_b))?;
         Ok(Wrench {
-            force_on_a: i.force_on_a,
-            torque_on_a: i.torque_on_a,
-            torque_on_b: i.torque_on_b,
+            force_on_a: e.force_on_a,
+            torque_on_a: e.torque_on_a.unwrap_or_else(Vec3::zeros),
+            torque_on_b: e.torque_on_b.unwrap_or_else(Vec3::zeros),
         })
     }
     fn motion_path(&self, initial: &TwoBodyState) -> MotionPath {

@@ -83,7 +83,8 @@ pub use model::{CentralPair, InteractionError, InteractionModel, MotionPath, Poi
 pub use orbit::{Apsis, OrbitAnalyser, OrbitReport};
 pub use run::{run_with_diagnostics, RunReport};
 pub use spin::{
-    osculating_elements, state_from_elements, true_anomaly, BodySpinReport, Elements,
-    OrbitElementsReport, Range, SpinOrbitAnalyser, SpinOrbitReport,
+    libration_deg, long_axis, obliquity_deg, osculating_elements, state_from_elements,
+    true_anomaly, BodySpinReport, Elements, OrbitElementsReport, Range, SpinOrbitAnalyser,
+    SpinOrbitReport,
 };
 pub use state::{BodyState, Sample, TwoBodyState};

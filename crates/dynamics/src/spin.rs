@@ -219,6 +219,57 @@ impl Unwrapper {
     }
 }
 
+/// The long axis of an elongated body, body frame: the principal axis of least moment when that
+/// moment is distinct (by more than rounding); `None` for a body symmetric about it or without
+/// an inertia tensor.
+pub fn long_axis(inertia: Option<InertiaTensor>) -> Option<Vec3> {
+    let i = inertia?;
+    let m = i.principal_moments();
+    let k = (0..3).min_by(|&a, &b| m[a].total_cmp(&m[b]))?;
+    let others = (0..3)
+        .filter(|&j| j != k)
+        .map(|j| m[j])
+        .fold(Real::INFINITY, Real::min);
+    (others - m[k] > 1e-12 * m.max()).then(|| {
+        let mut e = Vec3::zeros();
+        e[k] = 1.0;
+        i.principal_axes() * e
+    })
+}
+
+/// Obliquity of body `k` (0 = A, 1 = B) in degrees: the angle between its angular velocity and
+/// the mutual orbit's normal; `None` without spin or orbital angular momentum.
+pub fn obliquity_deg(state: &TwoBodyState, k: usize) -> Option<Real> {
+    let n = state
+        .relative_position()
+        .cross(&state.relative_velocity())
+        .try_normalize(0.0)?;
+    let body = if k == 0 { &state.body_a } else { &state.body_b };
+    let w = body.angular_velocity.try_normalize(0.0)?;
+    Some(w.dot(&n).clamp(-1.0, 1.0).acos().to_degrees())
+}
+
+/// Libration angle of body `k` in degrees (module docs) for its body-frame long axis `axis`.
+pub fn libration_deg(state: &TwoBodyState, k: usize, axis: &Vec3) -> Option<Real> {
+    let r = state.relative_position();
+    let n = r.cross(&state.relative_velocity()).try_normalize(0.0)?;
+    let (body, toward) = if k == 0 {
+        (&state.body_a, r)
+    } else {
+        (&state.body_b, -r)
+    };
+    let long = body.orientation * axis;
+    let in_plane = long - n * long.dot(&n);
+    let mut angle = n.dot(&toward.cross(&in_plane)).atan2(toward.dot(&in_plane));
+    // The axis has no sense: wrap into (−π/2, π/2].
+    if angle > std::f64::consts::FRAC_PI_2 {
+        angle -= std::f64::consts::PI;
+    } else if angle <= -std::f64::consts::FRAC_PI_2 {
+        angle += std::f64::consts::PI;
+    }
+    Some(angle.to_degrees())
+}
+
 /// Collects the spin–orbit diagnostics of a run (module docs).
 #[derive(Debug, Clone)]
 pub struct SpinOrbitAnalyser {
@@ -240,21 +291,6 @@ impl SpinOrbitAnalyser {
     /// not rotate), gravitational parameter `mu` = G(m_A + m_B) of the relative orbit, and the
     /// initial total angular momentum `j0` defining the reference plane.
     pub fn new(inertia: [Option<InertiaTensor>; 2], mu: Real, j0: Vec3) -> Self {
-        let long_axis = |i: Option<InertiaTensor>| {
-            let i = i?;
-            let m = i.principal_moments();
-            let k = (0..3).min_by(|&a, &b| m[a].total_cmp(&m[b]))?;
-            let others = (0..3)
-                .filter(|&j| j != k)
-                .map(|j| m[j])
-                .fold(Real::INFINITY, Real::min);
-            // Elongated: the least moment is distinct (by more than rounding).
-            (others - m[k] > 1e-12 * m.max()).then(|| {
-                let mut e = Vec3::zeros();
-                e[k] = 1.0;
-                i.principal_axes() * e
-            })
-        };
         Self {
             mu,
             frame: reference_frame(&j0),
@@ -279,25 +315,14 @@ impl SpinOrbitAnalyser {
     pub fn observe_state(&mut self, time: Real, state: &TwoBodyState) {
         let r = state.relative_position();
         let v = state.relative_velocity();
-        let normal = r.cross(&v).try_normalize(0.0);
-        for (k, body) in [&state.body_a, &state.body_b].into_iter().enumerate() {
-            let w = body.angular_velocity;
-            self.spin_rate[k].push(w.norm());
-            if let (Some(n), Some(w_hat)) = (normal, w.try_normalize(0.0)) {
-                self.obliquity[k].push(w_hat.dot(&n).clamp(-1.0, 1.0).acos().to_degrees());
+        for k in 0..2 {
+            let body = if k == 0 { &state.body_a } else { &state.body_b };
+            self.spin_rate[k].push(body.angular_velocity.norm());
+            if let Some(o) = obliquity_deg(state, k) {
+                self.obliquity[k].push(o);
             }
-            if let (Some(axis), Some(n)) = (self.long_axes[k], normal) {
-                let toward = if k == 0 { r } else { -r };
-                let long = body.orientation * axis;
-                let in_plane = long - n * long.dot(&n);
-                let mut angle = n.dot(&toward.cross(&in_plane)).atan2(toward.dot(&in_plane));
-                // The axis has no sense: wrap into (−π/2, π/2].
-                if angle > std::f64::consts::FRAC_PI_2 {
-                    angle -= std::f64::consts::PI;
-                } else if angle <= -std::f64::consts::FRAC_PI_2 {
-                    angle += std::f64::consts::PI;
-                }
-                self.libration[k].push((time, angle.to_degrees()));
+            if let Some(angle) = self.long_axes[k].and_then(|a| libration_deg(state, k, &a)) {
+                self.libration[k].push((time, angle));
             }
         }
         if let Some(frame) = &self.frame {

@@ -17,6 +17,12 @@
 //!   cumulative $(E - E_0)/|E_0|$ and $(J - J_0)/|J_0|$, which stay readable over long runs
 //!   where the per-step panels fill solid.
 //! - [`histograms`] (Fig. 4): the distributions of $\Delta E$ and $\Delta J$ (every step).
+//! - [`rotation`] (`fig5_rotation`, drawn by default when the run integrated rotation): spin
+//!   rates $|\boldsymbol\omega|$, obliquities (spin axis to the mutual orbit's normal) and
+//!   libration angles (an elongated body's long axis to the line of centres, in the orbit
+//!   plane; [`surfgrav_dynamics::spin`]) of both bodies, and the cumulative relative errors
+//!   $(E - E_0)/|E_0|$ and $|\mathbf J - \mathbf J_0|/|\mathbf J_0|$ of the energy and of the
+//!   angular-momentum vector.
 //!
 //! Data are thinned to what a page shows: time series keep the smallest and largest value of
 //! each of [`PAGE_COLUMNS`] time slices (so peaks survive), orbits the written rows (at most
@@ -568,6 +574,7 @@ pub fn stem(kind: FigureKind) -> &'static str {
         FigureKind::Orbits => "fig2_orbits",
         FigureKind::Conservation => "fig3_conservation",
         FigureKind::Histograms => "fig4_histograms",
+        FigureKind::Rotation => "fig5_rotation",
     }
 }
 
@@ -577,6 +584,125 @@ pub fn figure(run: &RunRecord, kind: FigureKind) -> Figure {
         FigureKind::Orbits => orbits(run),
         FigureKind::Conservation => conservation(run),
         FigureKind::Histograms => histograms(run),
+        FigureKind::Rotation => rotation(run),
+    }
+}
+
+/// The figures a run draws: the scene's list, plus [`FigureKind::Rotation`] for a run that
+/// integrated rotation when the scene did not choose its figures.
+pub fn kinds(run: &RunRecord) -> Vec<FigureKind> {
+    let mut kinds = run.scene.figures.clone();
+    if run.path.is_rotation()
+        && kinds == FigureKind::ALL.to_vec()
+        && !kinds.contains(&FigureKind::Rotation)
+    {
+        kinds.push(FigureKind::Rotation);
+    }
+    kinds
+}
+
+/// Spin rates, obliquities and libration angles of both bodies against time (the written rows),
+/// and the drifts of E and of the vector J (every step).
+pub fn rotation(run: &RunRecord) -> Figure {
+    use surfgrav_dynamics::{libration_deg, long_axis, obliquity_deg};
+    let units = Units::of(&run.scene);
+    let time_label = format!("time t ({})", units.time);
+    let inertia = |b: &crate::spec::BuiltBody| b.into_potential().inertia();
+    let axes = [
+        long_axis(inertia(&run.scene.body_a)),
+        long_axis(inertia(&run.scene.body_b)),
+    ];
+    let per_body = |f: &dyn Fn(&crate::simulate::OutputRow, usize) -> Option<Real>| {
+        ["A", "B"]
+            .iter()
+            .enumerate()
+            .map(|(k, name)| Series {
+                label: format!("body {name}"),
+                points: thin_to_page(
+                    run.rows
+                        .iter()
+                        .filter_map(|row| f(row, k).map(|y| (row.time, y)))
+                        .collect(),
+                    PAGE_COLUMNS,
+                ),
+                style: Style::Line,
+            })
+            .filter(|s| !s.points.is_empty())
+            .collect::<Vec<_>>()
+    };
+    let spin = per_body(&|row, k| {
+        let b = if k == 0 {
+            &row.state.body_a
+        } else {
+            &row.state.body_b
+        };
+        Some(b.angular_velocity.norm())
+    });
+    let obliquity = per_body(&|row, k| obliquity_deg(&row.state, k));
+    let libration = per_body(&|row, k| axes[k].and_then(|a| libration_deg(&row.state, k, &a)));
+    let series = |label: &str, points: Vec<(Real, Real)>| {
+        vec![Series {
+            label: label.into(),
+            points: thin_to_page(points, PAGE_COLUMNS),
+            style: Style::Line,
+        }]
+    };
+    let j_errors: Vec<(Real, Real)> = run
+        .step_times
+        .iter()
+        .copied()
+        .zip(run.angular_momentum_errors.iter().copied())
+        .collect();
+    Figure {
+        title: format!(
+            "{}: spins and libration ({})",
+            run.scene.name,
+            run.scene.integrator.method().name()
+        ),
+        panels: {
+            // Panels with nothing to show (no spin, no elongated body) are left out.
+            let mut panels = Vec::new();
+            for (title, y, data) in [
+                (
+                    "Spin rates",
+                    format!("|ω| (rad per {})", units.time_singular),
+                    spin,
+                ),
+                (
+                    "Obliquity: spin axis to the mutual orbit's normal",
+                    "obliquity (degrees)".to_string(),
+                    obliquity,
+                ),
+                (
+                    "Libration: long axis to the line of centres",
+                    "libration angle (degrees)".to_string(),
+                    libration,
+                ),
+            ] {
+                if !data.is_empty() {
+                    panels.push(lines(title.into(), time_label.clone(), y, data, false));
+                }
+            }
+            panels.push(lines(
+                "Energy error since the start".into(),
+                time_label.clone(),
+                "(E − E0)/|E0| (dimensionless)".into(),
+                series(
+                    "(E − E0)/|E0|",
+                    cumulative_relative_change(run, &run.energies),
+                ),
+                false,
+            ));
+            panels.push(lines(
+                "Angular-momentum vector error since the start".into(),
+                time_label,
+                "|J − J0|/|J0| (dimensionless)".into(),
+                series("|J − J0|/|J0|", j_errors),
+                false,
+            ));
+            panels
+        },
+        columns: 1,
     }
 }
 
@@ -586,7 +712,7 @@ pub fn figure(run: &RunRecord, kind: FigureKind) -> Figure {
 /// The plot module's errors.
 pub fn write_all(run: &RunRecord, folder: &Path) -> Result<Vec<PathBuf>, PlotError> {
     let mut files = Vec::new();
-    for &kind in &run.scene.figures {
+    for kind in kinds(run) {
         files.extend(write_figure(&figure(run, kind), &folder.join(stem(kind)))?);
     }
     Ok(files)

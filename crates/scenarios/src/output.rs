@@ -9,8 +9,10 @@
 //! Files of a run folder:
 //! - `trajectory.csv`: header row, then one row per written sample: `t`, `xa, ya, za`,
 //!   `xb, yb, zb`, `vxa, vya, vza`, `vxb, vyb, vzb` (world frame), `separation`, `energy`
-//!   ($E = T + V$), `angular_momentum` ($|\mathbf J|$ about the origin); shortest round-trip
-//!   decimal form. Streamed as the run goes ([`TrajectoryWriter`]); which samples are written
+//!   ($E = T + V$, spins included), `angular_momentum` ($|\mathbf J|$ about the origin, orbital
+//!   and spin), then `qwa, qxa, qya, qza, qwb, qxb, qyb, qzb` (attitude quaternions, scalar
+//!   first, body → world), `wxa, wya, wza, wxb, wyb, wzb` (angular velocities, world frame),
+//!   `jx, jy, jz` (total angular momentum $\mathbf J$); shortest round-trip decimal form. Streamed as the run goes ([`TrajectoryWriter`]); which samples are written
 //!   follows [`OutputPlan::of`] (by default at most [`DEFAULT_MAX_ROWS`] rows, or
 //!   [`DEFAULT_MAX_ADAPTIVE_ROWS`] for adaptive methods).
 //! - `summary.json`: see [`Summary`].
@@ -102,6 +104,76 @@ pub struct Summary {
     pub angular_momentum: ConservationSummary,
     /// How the trajectory was written.
     pub output: OutputSummary,
+    /// Which equations ran: `translation` (attitudes turn uniformly with their spins: every
+    /// torque vanishes along the motion by symmetry) or `rotation` (Euler's equations
+    /// integrated with the orbit).
+    pub motion: MotionSummary,
+    /// Largest $|\mathbf J - \mathbf J_0|/|\mathbf J_0|$ of the total angular-momentum vector.
+    pub angular_momentum_vector_max_relative_drift: Real,
+    /// Largest change of the linear momentum relative to $m_A|\dot{\mathbf R}_A| + m_B|\dot{\mathbf R}_B|$ at the start.
+    pub linear_momentum_max_relative_drift: Real,
+    /// Per body (A, B): spin rate, obliquity, libration.
+    pub spins: [SpinSummary; 2],
+    /// The mutual orbit's osculating elements and precession rates.
+    pub mutual_orbit: MutualOrbitSummary,
+}
+
+/// The motion path in `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MotionSummary {
+    /// `translation` or `rotation`.
+    pub path: &'static str,
+    /// Why.
+    pub reason: &'static str,
+}
+
+/// A range in `summary.json`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RangeSummary {
+    /// Smallest value.
+    pub min: Real,
+    /// Largest value.
+    pub max: Real,
+}
+
+fn range(r: Option<surfgrav_dynamics::Range>) -> Option<RangeSummary> {
+    r.map(|r| RangeSummary {
+        min: r.min,
+        max: r.max,
+    })
+}
+
+/// One body's spin in `summary.json` (angles in degrees).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SpinSummary {
+    /// $|\boldsymbol\omega|$ range (radians per time unit).
+    pub spin_rate: Option<RangeSummary>,
+    /// Angle between the spin axis and the mutual orbit's normal.
+    pub obliquity_deg: Option<RangeSummary>,
+    /// Angle from the line of centres to the long axis in the orbit plane (elongated bodies).
+    pub libration_deg: Option<RangeSummary>,
+    /// Mean period of the libration.
+    pub libration_period: Option<Real>,
+}
+
+/// The mutual orbit in `summary.json`: osculating elements for $\mu = G(m_A + m_B)$ in the frame
+/// of the initial total angular momentum (angles in degrees).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MutualOrbitSummary {
+    /// a.
+    pub semi_major_axis: Option<RangeSummary>,
+    /// e.
+    pub eccentricity: Option<RangeSummary>,
+    /// i.
+    pub inclination_deg: Option<RangeSummary>,
+    /// Ω (unwrapped).
+    pub node_deg: Option<RangeSummary>,
+    /// ω (unwrapped).
+    pub pericentre_deg: Option<RangeSummary>,
+    /// dΩ/dt in degrees per time unit.
+    pub nodal_precession_rate_deg: Option<Real>,
+    /// dϖ/dt in degrees per time unit.
+    pub apsidal_precession_rate_deg: Option<Real>,
 }
 
 impl Summary {
@@ -135,6 +207,34 @@ impl Summary {
                     "scene"
                 },
                 rule: run.output.rule(),
+            },
+            motion: MotionSummary {
+                path: if run.path.is_rotation() {
+                    "rotation"
+                } else {
+                    "translation"
+                },
+                reason: run.path.reason(),
+            },
+            angular_momentum_vector_max_relative_drift: run.angular_momentum_vector_drift,
+            linear_momentum_max_relative_drift: run.linear_momentum_drift,
+            spins: run.spin_orbit.bodies.map(|b| SpinSummary {
+                spin_rate: range(b.spin_rate),
+                obliquity_deg: range(b.obliquity),
+                libration_deg: range(b.libration),
+                libration_period: b.libration_period,
+            }),
+            mutual_orbit: {
+                let o = &run.spin_orbit.orbit;
+                MutualOrbitSummary {
+                    semi_major_axis: range(o.semi_major_axis),
+                    eccentricity: range(o.eccentricity),
+                    inclination_deg: range(o.inclination),
+                    node_deg: range(o.node),
+                    pericentre_deg: range(o.pericentre),
+                    nodal_precession_rate_deg: o.nodal_precession_rate,
+                    apsidal_precession_rate_deg: o.apsidal_precession_rate,
+                }
             },
         }
     }
@@ -247,7 +347,7 @@ fn round_up_to_1_2_5(x: Real) -> Real {
 
 /// The CSV header of `trajectory.csv`.
 pub const TRAJECTORY_HEADER: &str =
-    "t,xa,ya,za,xb,yb,zb,vxa,vya,vza,vxb,vyb,vzb,separation,energy,angular_momentum";
+    "t,xa,ya,za,xb,yb,zb,vxa,vya,vza,vxb,vyb,vzb,separation,energy,angular_momentum,qwa,qxa,qya,qza,qwb,qxb,qyb,qzb,wxa,wya,wza,wxb,wyb,wzb,jx,jy,jz";
 
 /// `trajectory.csv`, written row by row as the run goes (nothing is held in memory).
 pub struct TrajectoryWriter {
@@ -282,7 +382,14 @@ impl TrajectoryWriter {
             .chain(b.position.iter().copied())
             .chain(a.velocity.iter().copied())
             .chain(b.velocity.iter().copied())
-            .chain([row.state.separation(), row.energy, row.angular_momentum]);
+            .chain([row.state.separation(), row.energy, row.angular_momentum])
+            .chain([a, b].into_iter().flat_map(|body| {
+                let q = body.orientation.quaternion();
+                [q.w, q.i, q.j, q.k]
+            }))
+            .chain(a.angular_velocity.iter().copied())
+            .chain(b.angular_velocity.iter().copied())
+            .chain(row.angular_momentum_vector.iter().copied());
         for (k, x) in values.enumerate() {
             if k > 0 {
                 line.push(',');

@@ -16,7 +16,8 @@
 //! position = [-3.5, 0.0, 0.0]
 //! velocity = [0.0, 0.2, 0.0]
 //! orientation = [0.0, 0.0, 0.0]  # optional rotation vector (axis × angle, rad), body → world
-//! spin = [0.0, 0.0, 0.0]         # optional angular velocity (world frame, rad per time unit)
+//! angular_velocity = [0.0, 0.0, 0.0]  # optional, world frame, rad per time unit; or
+//! # angular_velocity_body = [...]     # the same in the body frame (give at most one)
 //!
 //! [body_b]
 //! # ... as body_a
@@ -156,9 +157,13 @@ pub struct BodyFile {
     /// Orientation as a rotation vector (axis × angle, radians), body frame → world frame.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub orientation: Option<Spanned<[Real; 3]>>,
-    /// Angular velocity (world frame, radians per time unit); carried unchanged.
+    /// Angular velocity (world frame, radians per time unit). `spin` is read as this key.
+    #[serde(default, alias = "spin", skip_serializing_if = "Option::is_none")]
+    pub angular_velocity: Option<Spanned<[Real; 3]>>,
+    /// Angular velocity in the body frame (radians per time unit), instead of
+    /// `angular_velocity`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub spin: Option<Spanned<[Real; 3]>>,
+    pub angular_velocity_body: Option<Spanned<[Real; 3]>>,
 }
 
 /// The integrator as written in a scene file.
@@ -212,6 +217,10 @@ pub enum FigureKind {
     Conservation,
     /// The paper's Fig. 4: histograms of ΔE and ΔJ.
     Histograms,
+    /// Spin rates, obliquities and libration angles against time, with the drifts of the
+    /// energy and of the angular-momentum vector (drawn by default for runs that integrate
+    /// rotation).
+    Rotation,
 }
 
 impl FigureKind {
@@ -788,8 +797,33 @@ fn build_body(
     if let Some(o) = &b.orientation {
         state.orientation = nalgebra::UnitQuaternion::from_scaled_axis(vec3(o, "orientation")?);
     }
-    if let Some(s) = &b.spin {
-        state.angular_velocity = vec3(s, "spin")?;
+    match (&b.angular_velocity, &b.angular_velocity_body) {
+        (Some(_), Some(w)) => {
+            return Err(loc.at(
+                w,
+                &field("angular_velocity_body"),
+                "give either angular_velocity (world frame) or angular_velocity_body (body frame), not both",
+            ))
+        }
+        (Some(w), None) => state.angular_velocity = vec3(w, "angular_velocity")?,
+        (None, Some(w)) => {
+            state.angular_velocity = state.orientation * vec3(w, "angular_velocity_body")?;
+        }
+        (None, None) => {}
+    }
+    if shape == Shape::Point && state.angular_velocity != Vec3::zeros() {
+        let message =
+            "a point mass cannot rotate: remove the angular velocity or give the body a size";
+        return Err(
+            match b
+                .angular_velocity
+                .as_ref()
+                .or(b.angular_velocity_body.as_ref())
+            {
+                Some(w) => loc.at(w, &field("angular_velocity"), message),
+                None => loc.at(&b.shape, &field("angular_velocity"), message),
+            },
+        );
     }
     Ok((spec, built, state))
 }

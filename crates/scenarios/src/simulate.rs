@@ -10,7 +10,11 @@
 //!   evaluation otherwise. Building it evaluates the interaction at the start, so bodies that
 //!   overlap there are refused before any output exists.
 //!
-//! Per sample the run records the total energy $E = T + V$ and $J = |\mathbf J|$ (one energy
+//! The model says which equations run ([`MotionPath`]): translation only where a symmetry kept
+//! by the motion holds every torque at zero, translation and rotation otherwise.
+//!
+//! Per sample the run records the total energy $E = T + V$ (spins included) and
+//! $J = |\mathbf J|$ (orbital and spin angular momentum; one energy
 //! evaluation per sample, never per stage) and feeds the changes between consecutive samples,
 //! $\Delta E_k = E_k - E_{k-1}$ and $\Delta J_k = J_k - J_{k-1}$, to the statistics of
 //! [`surfgrav_dynamics::diagnostics`] (the paper's Table 2). The relative orbit goes to
@@ -20,10 +24,11 @@ use std::time::Instant;
 
 use surfgrav_dynamics::{
     angular_momentum, total_energy, ConservationStatistics, DynamicsError, EngineModelError,
-    InteractionModel, OrbitAnalyser, OrbitReport, PointMasses, RunSummary, Sample, SceneModel,
-    SceneSettings, SeriesAccumulator, Termination, TwoBodyState,
+    InteractionModel, MotionPath, OrbitAnalyser, OrbitReport, PointMasses, RunSummary, Sample,
+    SceneModel, SceneSettings, SeriesAccumulator, SpinOrbitAnalyser, SpinOrbitReport, Termination,
+    TwoBodyState,
 };
-use surfgrav_potentials::Real;
+use surfgrav_potentials::{Real, Vec3};
 use surfgrav_surfaces::interaction::{InteractionError as EngineError, InteractionOptions};
 
 use crate::output::{Cadence, OutputPlan};
@@ -57,6 +62,8 @@ pub struct PreparedModel {
     pub method: &'static str,
     /// Seconds spent building the model (tables included).
     pub build_seconds: Real,
+    /// Which equations the run integrates (translation only, or with rotation), and why.
+    pub path: MotionPath,
 }
 
 impl PreparedModel {
@@ -77,10 +84,12 @@ pub fn prepare(scene: &Scene) -> Result<PreparedModel, RunError> {
         use surfgrav_potentials::Potential;
         let model = PointMasses::new(a.mass(), b.mass(), scene.gravitational_constant)
             .ok_or_else(|| RunError::Input("point masses must be positive and finite".into()))?;
+        let path = model.motion_path(&scene.initial);
         return Ok(PreparedModel {
             model: Box::new(model),
             method: "point masses (exact)",
             build_seconds: start.elapsed().as_secs_f64(),
+            path,
         });
     }
     let body = |b: BuiltBody, name: &str| {
@@ -118,10 +127,12 @@ pub fn prepare(scene: &Scene) -> Result<PreparedModel, RunError> {
     } else {
         "direct surface integral"
     };
+    let path = model.motion_path(&scene.initial);
     Ok(PreparedModel {
         model: Box::new(model),
         method,
         build_seconds: start.elapsed().as_secs_f64(),
+        path,
     })
 }
 
@@ -136,6 +147,8 @@ pub struct OutputRow {
     pub energy: Real,
     /// $|\mathbf J|$ about the origin.
     pub angular_momentum: Real,
+    /// $\mathbf J$ about the origin, orbital and spin.
+    pub angular_momentum_vector: Vec3,
 }
 
 /// Most written rows a [`RunRecord`] keeps for figures: beyond it every other kept row is
@@ -165,6 +178,18 @@ pub struct RunRecord {
     pub energies: Vec<Real>,
     /// $|\mathbf J|$ at each sample (every step).
     pub angular_momenta: Vec<Real>,
+    /// $|\mathbf J - \mathbf J_0|/|\mathbf J_0|$ at each sample (every step): the error of the
+    /// angular-momentum vector.
+    pub angular_momentum_errors: Vec<Real>,
+    /// Largest $|\mathbf J - \mathbf J_0|/|\mathbf J_0|$.
+    pub angular_momentum_vector_drift: Real,
+    /// Largest $|\mathbf P - \mathbf P_0|/(m_A|\dot{\mathbf R}_A| + m_B|\dot{\mathbf R}_B|)_0$ of the
+    /// linear momentum $\mathbf P = m_A\dot{\mathbf R}_A + m_B\dot{\mathbf R}_B$.
+    pub linear_momentum_drift: Real,
+    /// Which equations were integrated, and why.
+    pub path: MotionPath,
+    /// Spin rates, obliquities, libration, osculating elements (every step).
+    pub spin_orbit: SpinOrbitReport,
     /// The first sample.
     pub first: Sample,
     /// The sample of smallest separation among the steps.
@@ -251,12 +276,56 @@ struct StepRecorder {
     first: Option<Sample>,
     closest: Option<Sample>,
     energy_error: Option<String>,
+    momenta: Option<MomentumTracker>,
+    spin_orbit: Option<SpinOrbitAnalyser>,
+    mu: Real,
+}
+
+/// The vectors $\mathbf J$ and $\mathbf P$ against their initial values.
+struct MomentumTracker {
+    j0: Vec3,
+    p0: Vec3,
+    p_scale: Real,
+    errors: Vec<Real>,
+    j_drift: Real,
+    p_drift: Real,
+}
+
+fn linear_momentum(model: &dyn InteractionModel, state: &TwoBodyState) -> Vec3 {
+    state.body_a.velocity * model.mass_a() + state.body_b.velocity * model.mass_b()
 }
 
 impl StepRecorder {
     /// Records one sample; returns its energy and $|\mathbf J|$.
-    fn observe(&mut self, model: &dyn InteractionModel, sample: &Sample) -> (Real, Real) {
-        let (e, j) = energy_and_momentum(model, &sample.state, sample.time, &mut self.energy_error);
+    fn observe(&mut self, model: &dyn InteractionModel, sample: &Sample) -> (Real, Real, Vec3) {
+        let (e, j_vector) =
+            energy_and_momentum(model, &sample.state, sample.time, &mut self.energy_error);
+        let j = j_vector.norm();
+        let p = linear_momentum(model, &sample.state);
+        let momenta = self.momenta.get_or_insert_with(|| MomentumTracker {
+            j0: j_vector,
+            p0: p,
+            p_scale: model.mass_a() * sample.state.body_a.velocity.norm()
+                + model.mass_b() * sample.state.body_b.velocity.norm(),
+            errors: Vec::new(),
+            j_drift: 0.0,
+            p_drift: 0.0,
+        });
+        let j_error = (j_vector - momenta.j0).norm() / momenta.j0.norm();
+        let j_error = if j_error.is_finite() { j_error } else { 0.0 };
+        momenta.errors.push(j_error);
+        momenta.j_drift = momenta.j_drift.max(j_error);
+        if momenta.p_scale > 0.0 {
+            momenta.p_drift = momenta
+                .p_drift
+                .max((p - momenta.p0).norm() / momenta.p_scale);
+        }
+        let mu = self.mu;
+        self.spin_orbit
+            .get_or_insert_with(|| {
+                SpinOrbitAnalyser::new([model.inertia_a(), model.inertia_b()], mu, j_vector)
+            })
+            .observe(sample);
         match &mut self.trackers {
             None => self.trackers = Some((Tracker::new(e), Tracker::new(j))),
             Some((te, tj)) => {
@@ -275,7 +344,7 @@ impl StepRecorder {
         self.times.push(sample.time);
         self.energies.push(e);
         self.angular_momenta.push(j);
-        (e, j)
+        (e, j, j_vector)
     }
 }
 
@@ -284,7 +353,7 @@ fn energy_and_momentum(
     state: &TwoBodyState,
     time: Real,
     error: &mut Option<String>,
-) -> (Real, Real) {
+) -> (Real, Vec3) {
     let e = match total_energy(model, state) {
         Ok(e) => e,
         Err(err) => {
@@ -294,7 +363,7 @@ fn energy_and_momentum(
             Real::NAN
         }
     };
-    (e, angular_momentum(model, state).norm())
+    (e, angular_momentum(model, state))
 }
 
 /// The written rows: handed to the sink as they come, kept thinned for figures.
@@ -353,8 +422,7 @@ impl RowRecorder<'_> {
 ///
 /// # Errors
 /// [`RunError::Input`] for an integrator the build cannot provide and for scenes the
-/// integrators refuse at the start (torques that do not vanish: rotational dynamics is not
-/// integrated yet); [`RunError::Failed`] for an integrator or model failure during the run
+/// integrators refuse at the start; [`RunError::Failed`] for an integrator or model failure during the run
 /// (with its time), and for the sink's first error.
 pub fn simulate(
     scene: &Scene,
@@ -375,6 +443,9 @@ pub fn simulate(
         first: None,
         closest: None,
         energy_error: None,
+        momenta: None,
+        spin_orbit: None,
+        mu: scene.gravitational_constant * (model.mass_a() + model.mass_b()),
     };
     let mut rows = RowRecorder {
         sink,
@@ -395,13 +466,15 @@ pub fn simulate(
                 scene.t_start,
                 scene.t_end,
                 &mut |sample| {
-                    let (energy, angular_momentum) = steps.observe(model, sample);
+                    let (energy, angular_momentum, angular_momentum_vector) =
+                        steps.observe(model, sample);
                     if index.is_multiple_of(every) {
                         rows.push(OutputRow {
                             time: sample.time,
                             state: sample.state,
                             energy,
                             angular_momentum,
+                            angular_momentum_vector,
                         });
                     }
                     index += 1;
@@ -420,13 +493,14 @@ pub fn simulate(
                 progress(sample.time);
             },
             &mut |time, state| {
-                let (energy, angular_momentum) =
+                let (energy, angular_momentum_vector) =
                     energy_and_momentum(model, state, time, &mut row_energy_error);
                 rows.push(OutputRow {
                     time,
                     state: *state,
                     energy,
-                    angular_momentum,
+                    angular_momentum: angular_momentum_vector.norm(),
+                    angular_momentum_vector,
                 });
             },
         ),
@@ -443,16 +517,14 @@ pub fn simulate(
     }
     // The last state is always written (the end time, or the contact).
     if rows.last_time.is_none_or(|t| t < summary.last.time) {
-        let (energy, angular_momentum) = match (steps.energies.last(), steps.angular_momenta.last())
-        {
-            (Some(&e), Some(&j)) => (e, j),
-            _ => (Real::NAN, Real::NAN),
-        };
+        let energy = steps.energies.last().copied().unwrap_or(Real::NAN);
+        let angular_momentum_vector = angular_momentum(model, &summary.last.state);
         rows.push(OutputRow {
             time: summary.last.time,
             state: summary.last.state,
             energy,
-            angular_momentum,
+            angular_momentum: angular_momentum_vector.norm(),
+            angular_momentum_vector,
         });
     }
     if let Some(message) = rows.error.take() {
@@ -466,6 +538,13 @@ pub fn simulate(
         _ => return Err(RunError::Failed("the run produced no sample".into())),
     };
     let (kept, row_stride, rows_written) = rows.into_rows();
+    let momenta = steps
+        .momenta
+        .ok_or_else(|| RunError::Failed("the run produced no sample".into()))?;
+    let spin_orbit = steps
+        .spin_orbit
+        .map(|a| a.report())
+        .ok_or_else(|| RunError::Failed("the run produced no sample".into()))?;
     Ok(RunRecord {
         scene: scene.clone(),
         method: prepared.method,
@@ -476,6 +555,11 @@ pub fn simulate(
         step_times: steps.times,
         energies: steps.energies,
         angular_momenta: steps.angular_momenta,
+        angular_momentum_errors: momenta.errors,
+        angular_momentum_vector_drift: momenta.j_drift,
+        linear_momentum_drift: momenta.p_drift,
+        path: prepared.path,
+        spin_orbit,
         first,
         closest,
         summary,

@@ -126,6 +126,11 @@ fn run_writes_whole_folder_with_exact_summary_keys() {
         "energy",
         "angular_momentum",
         "output",
+        "motion",
+        "angular_momentum_vector_max_relative_drift",
+        "linear_momentum_max_relative_drift",
+        "spins",
+        "mutual_orbit",
     ];
     let mut got = keys.clone();
     got.sort_unstable();
@@ -152,6 +157,9 @@ fn run_writes_whole_folder_with_exact_summary_keys() {
         );
     }
     assert_eq!(summary["scene"], "paper-point");
+    // Point masses cannot rotate: the translation path, and no spins.
+    assert_eq!(summary["motion"]["path"], "translation");
+    assert!(summary["spins"][0]["libration_deg"].is_null());
     // 600 steps: every step is written, and the summary says so.
     assert_eq!(summary["output"]["every"], 1);
     assert_eq!(summary["output"]["rows"], 601);
@@ -169,7 +177,8 @@ fn run_writes_whole_folder_with_exact_summary_keys() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "t,xa,ya,za,xb,yb,zb,vxa,vya,vza,vxb,vyb,vzb,separation,energy,angular_momentum"
+        "t,xa,ya,za,xb,yb,zb,vxa,vya,vza,vxb,vyb,vzb,separation,energy,angular_momentum,\
+         qwa,qxa,qya,qza,qwb,qxb,qyb,qzb,wxa,wya,wza,wxb,wyb,wzb,jx,jy,jz"
     );
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
