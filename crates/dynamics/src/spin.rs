@@ -10,6 +10,8 @@
 //!   centres (seen from that body toward the other) to the body's long axis (the principal
 //!   axis of least moment) projected into the plane, wrapped to $(-90°, 90°]$ since the axis has
 //!   no sense: its range and its period (mean spacing of its downward crossings of its mean);
+//!   a body whose long axis turns through the line of centres (a jump of more than 90° between
+//!   samples) is reported as circulating, without a libration range;
 //! - the osculating elements of the relative orbit for $\mu = G(m_A + m_B)$: semi-major axis a
 //!   (negative when unbound), eccentricity e, inclination i, longitude of the ascending node Ω
 //!   and argument of pericentre ω, in the frame whose z axis is the initial total angular
@@ -66,6 +68,10 @@ pub struct BodySpinReport {
     pub libration: Option<Range>,
     /// Libration period (time units), when the angle crossed its mean downward at least twice.
     pub libration_period: Option<Real>,
+    /// The long axis turned through the line of centres (the angle wrapped by 180° between
+    /// samples): the body circulates instead of librating, and the libration range and period
+    /// are not given.
+    pub circulating: bool,
 }
 
 /// The mutual orbit's osculating elements.
@@ -347,6 +353,17 @@ impl SpinOrbitAnalyser {
     pub fn report(&self) -> SpinOrbitReport {
         let body = |k: usize| {
             let series = &self.libration[k];
+            // A jump of more than 90° between samples is a wrap of the axis through ±90°.
+            let circulating = series.windows(2).any(|w| (w[1].1 - w[0].1).abs() > 90.0);
+            if circulating {
+                return BodySpinReport {
+                    spin_rate: self.spin_rate[k].value(),
+                    obliquity: self.obliquity[k].value(),
+                    libration: None,
+                    libration_period: None,
+                    circulating,
+                };
+            }
             let mut range = Range::empty();
             for &(_, a) in series {
                 range.push(a);
@@ -373,6 +390,7 @@ impl SpinOrbitAnalyser {
                 obliquity: self.obliquity[k].value(),
                 libration: range.value(),
                 libration_period: period,
+                circulating,
             }
         };
         let slope = |fit: &SeriesAccumulator| {

@@ -154,6 +154,8 @@ pub struct SpinSummary {
     pub libration_deg: Option<RangeSummary>,
     /// Mean period of the libration.
     pub libration_period: Option<Real>,
+    /// The long axis turns through the line of centres (no libration range then).
+    pub circulating: bool,
 }
 
 /// The mutual orbit in `summary.json`: osculating elements for $\mu = G(m_A + m_B)$ in the frame
@@ -223,6 +225,7 @@ impl Summary {
                 obliquity_deg: range(b.obliquity),
                 libration_deg: range(b.libration),
                 libration_period: b.libration_period,
+                circulating: b.circulating,
             }),
             mutual_orbit: {
                 let o = &run.spin_orbit.orbit;
