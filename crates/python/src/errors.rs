@@ -80,3 +80,12 @@ where
         ))),
     }
 }
+
+/// Panics inside [`compute`], to test that a panic reaches Python as [`InternalError`] and
+/// leaves the interpreter running (`surfgrav._surfgrav._panic_for_tests`; not public API).
+#[pyfunction]
+pub fn _panic_for_tests(py: Python<'_>) -> PyResult<()> {
+    compute(py, || -> Result<(), Failure> {
+        panic!("a deliberate panic for the tests")
+    })
+}

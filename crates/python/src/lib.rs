@@ -43,6 +43,7 @@ fn _surfgrav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::SceneRun>()?;
     m.add_function(wrap_pyfunction!(interaction::interact, m)?)?;
     m.add_function(wrap_pyfunction!(interaction::interact_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

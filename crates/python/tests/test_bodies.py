@@ -175,3 +175,15 @@ def test_the_gil_is_released_during_a_field_evaluation():
     # With the GIL held this thread could not run until the call returned.
     assert span["end"] - span["start"] > 0.05
     assert len(inside) >= 10, (len(inside), span)
+
+
+def test_a_rust_panic_is_an_exception_not_a_crash():
+    from surfgrav import _surfgrav
+
+    for _ in range(3):
+        with pytest.raises(sg.InternalError, match="a deliberate panic for the tests"):
+            _surfgrav._panic_for_tests()
+    assert isinstance(sg.InternalError("x"), RuntimeError)
+    # The interpreter and the module still work.
+    phi, _ = sg.Sphere(1.0, 1.0).field(np.array([[2.0, 0.0, 0.0]]))
+    assert phi[0] == -0.5
