@@ -164,6 +164,14 @@ pub enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Run a parameter sweep: one base scene, varied fields, one task folder per parameter set.
+    ///
+    /// SWEEP.toml names a base scene (preset or file) and the fields to vary by grids (values,
+    /// linspace, logspace) or Monte Carlo draws (uniform, normal, loguniform with a seed).
+    /// Writes tasks/NNNNN/ (scene.toml, summary.json, task.toml), manifest.json and
+    /// results.csv; a re-run skips finished tasks. `surfgrav sweep merge DIR...` gathers the
+    /// outputs of --shard runs.
+    Sweep(crate::sweep::SweepArgs),
     /// Run the paper's presets and write REPORT.md with the tables and figures.
     ///
     /// The precession table and Table 2 beside the paper's values, the limiting-case
@@ -264,6 +272,7 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
             run_command(&scene, out.as_deref(), &overrides, quiet)
         }
         Command::Report { out, quiet } => crate::report::report_command(out.as_deref(), quiet),
+        Command::Sweep(args) => crate::sweep::sweep_command(args),
         Command::Bench {
             out,
             quick,
@@ -368,6 +377,7 @@ fn field_commands(command: Command) -> Result<String, UserError> {
         Command::Presets { .. }
         | Command::Run { .. }
         | Command::Report { .. }
+        | Command::Sweep(_)
         | Command::Bench { .. } => Err(UserError("internal: not a field command".into())),
     }
 }

@@ -13,3 +13,4 @@ pub mod report;
 pub mod scene;
 pub mod simulate;
 pub mod spec;
+pub mod sweep;
