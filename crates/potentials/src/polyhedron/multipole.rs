@@ -138,6 +138,13 @@ pub(crate) struct Multipole {
     pub degree: usize,
     /// $\tilde M_n^m = \rho R^3 \int R_n^m(\tilde{\mathbf u})\,\mathrm d\tilde V$, mass units.
     pub moments: Vec<C64>,
+    /// $w_m\overline{M_n^m}$ ($w_0 = 1$, else 2): Σ = Σ Re($w_m\overline{M_n^m} I_n^m$).
+    weighted: Vec<C64>,
+    /// Per $(n', m')$, $n' \le$ `degree` + 1, the coefficients $C$ with
+    /// $\partial_{x,y,z}\Sigma = \sum \mathrm{Re}(C_{x,y,z}\,I_{n'}^{m'})$: the derivative
+    /// relations of the module docs gathered once (each moment of degree $n$ feeds $n' = n + 1$
+    /// only, so truncating the sum at $n' \le N + 1$ is the degree-$N$ gradient).
+    gradient: Vec<[C64; 3]>,
 }
 
 impl Multipole {
@@ -156,11 +163,40 @@ impl Multipole {
         for m in &mut moments {
             *m *= mass_scale;
         }
+        let zero = C64::new(0.0, 0.0);
+        let mut weighted = vec![zero; count(degree)];
+        let mut gradient = vec![[zero; 3]; count(degree + 1)];
+        let half_i = C64::new(0.0, 0.5);
+        for n in 0..=degree {
+            for m in 0..=n {
+                let w = if m == 0 { 1.0 } else { 2.0 };
+                let mc = moments[index(n, m)].conj() * w;
+                weighted[index(n, m)] = mc;
+                // ∂x = (∂₊ + ∂₋)/2, ∂y = (∂₊ − ∂₋)/(2i); ∂₊I_n^m = −I_{n+1}^{m+1},
+                // ∂₋I_n^m = I_{n+1}^{m−1} (m ≥ 1), ∂₋I_n^0 = −conj(I_{n+1}^1), ∂z I_n^m = −I_{n+1}^m;
+                // Re(a conj(b)) = Re(conj(a) b) for the last ∂₋.
+                let plus = &mut gradient[index(n + 1, m + 1)];
+                plus[0] -= mc * 0.5;
+                plus[1] += mc * half_i;
+                if m >= 1 {
+                    let minus = &mut gradient[index(n + 1, m - 1)];
+                    minus[0] += mc * 0.5;
+                    minus[1] += mc * half_i;
+                } else {
+                    let minus = &mut gradient[index(n + 1, 1)];
+                    minus[0] += (-mc * 0.5).conj();
+                    minus[1] += (-mc * half_i).conj();
+                }
+                gradient[index(n + 1, m)][2] -= mc;
+            }
+        }
         Self {
             centre,
             radius,
             degree,
             moments,
+            weighted,
+            gradient,
         }
     }
 
@@ -178,27 +214,18 @@ impl Multipole {
         scratch.resize(count(degree + 1), C64::new(0.0, 0.0));
         irregular(&x, degree + 1, scratch);
         let irr = &scratch[..];
-        let mut sum = 0.0;
+        // Re(a b) = a.re b.re − a.im b.im: real products only.
+        let re = |a: &C64, b: &C64| a.re * b.re - a.im * b.im;
+        let sum: Real = self.weighted[..count(degree)]
+            .iter()
+            .zip(irr)
+            .map(|(c, i)| re(c, i))
+            .sum();
         let (mut gx, mut gy, mut gz) = (0.0, 0.0, 0.0);
-        let i = C64::new(0.0, 1.0);
-        for n in 0..=degree {
-            for m in 0..=n {
-                let w = if m == 0 { 1.0 } else { 2.0 };
-                let mc = self.moments[index(n, m)].conj() * w;
-                sum += (mc * irr[index(n, m)]).re;
-                let plus = -irr[index(n + 1, m + 1)];
-                let minus = if m >= 1 {
-                    irr[index(n + 1, m - 1)]
-                } else {
-                    -irr[index(n + 1, 1)].conj()
-                };
-                let dx = (plus + minus) * 0.5;
-                let dy = (plus - minus) / (i * 2.0);
-                let dz = -irr[index(n + 1, m)];
-                gx += (mc * dx).re;
-                gy += (mc * dy).re;
-                gz += (mc * dz).re;
-            }
+        for (c, i) in self.gradient[..count(degree + 1)].iter().zip(irr) {
+            gx += re(&c[0], i);
+            gy += re(&c[1], i);
+            gz += re(&c[2], i);
         }
         let inv = 1.0 / self.radius;
         (sum * inv, Vec3::new(gx, gy, gz) * (inv * inv))
