@@ -38,7 +38,7 @@
 //! # Engine failures
 //!
 //! A quadrature failure of the engine (tolerance not met, non-finite result) is reported as
-//! [`InteractionError::Engine`] carrying the separation and the engine's message.
+//! [`InteractionError::Engine`] carrying the separation and the engine's typed error.
 //!
 //! # Performance (paper-2s: RK4, dt = 0.1, t = 300, 12 001 force evaluations; release build,
 //! one core, example `paper_2s`)
@@ -315,7 +315,7 @@ impl EngineModel {
             }
             EngineError::ToleranceNotMet { .. } => InteractionError::Engine {
                 separation,
-                message: error.to_string(),
+                source: error,
             },
             EngineError::NonFinitePose { .. } => InteractionError::NotFinite {
                 quantity: "pose",
@@ -324,7 +324,7 @@ impl EngineModel {
             },
             _ => InteractionError::Engine {
                 separation,
-                message: error.to_string(),
+                source: error,
             },
         }
     }

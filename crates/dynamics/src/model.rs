@@ -89,14 +89,14 @@ pub enum InteractionError {
         /// Centroid separation.
         separation: Real,
     },
-    /// The model's own computation failed (for the surface-integral engine: the requested
-    /// tolerance was not met within the evaluation budget, or its result was not finite).
-    #[error("the interaction could not be computed at separation {separation}: {message}")]
+    /// The surface-integral engine failed (the requested tolerance was not met within the
+    /// evaluation budget, its result was not finite, ...): its typed error, with the separation.
+    #[error("the interaction could not be computed at separation {separation}: {source}")]
     Engine {
         /// Centroid separation.
         separation: Real,
-        /// The engine's own message, saying what to change.
-        message: String,
+        /// The engine's error, saying what to change.
+        source: surfgrav_surfaces::interaction::InteractionError,
     },
 }
 

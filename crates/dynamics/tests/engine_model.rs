@@ -379,12 +379,16 @@ fn engine_failure_is_reported_with_its_reason() {
     let model = EngineModel::new(spheroid(), spheroid(), options).unwrap();
     let pose_b = Pose::new(Vec3::new(3.0, 0.0, 0.0), Vec3::zeros());
     match model.force_on_a(&Pose::identity(), &pose_b) {
-        Err(InteractionError::Engine {
-            separation,
-            message,
-        }) => {
+        Err(InteractionError::Engine { separation, source }) => {
             assert_eq!(separation, 3.0);
-            assert!(message.contains("tolerance"), "{message}");
+            assert!(
+                matches!(
+                    source,
+                    surfgrav_surfaces::interaction::InteractionError::ToleranceNotMet { .. }
+                ),
+                "{source}"
+            );
+            assert!(source.to_string().contains("tolerance"), "{source}");
         }
         other => panic!("expected an engine error, got {other:?}"),
     }
