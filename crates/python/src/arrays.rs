@@ -79,10 +79,18 @@ pub fn rows(obj: &Bound<'_, PyAny>, what: &str, k: usize) -> PyResult<Vec<f64>> 
     Ok(view.as_array().iter().copied().collect())
 }
 
-/// An (N, 3) float64 array of points with finite coordinates.
+/// An (N, 3) float64 array of points with finite coordinates (copied once, row by row, so
+/// the GIL can be released).
 pub fn points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[f64; 3]>> {
-    let flat = rows(obj, what, 3)?;
-    let points: Vec<[f64; 3]> = flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let array = float64_array(obj, what, "(N, 3)", |s| s.len() == 2 && s[1] == 3)?;
+    let typed = array.cast::<PyArray2<f64>>()?;
+    let readonly = typed.readonly();
+    let view = readonly.as_array();
+    let points: Vec<[f64; 3]> = match view.as_slice() {
+        // C-contiguous: one pass over the buffer.
+        Some(flat) => flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+        None => view.outer_iter().map(|r| [r[0], r[1], r[2]]).collect(),
+    };
     if let Some((i, p)) = points
         .iter()
         .enumerate()
