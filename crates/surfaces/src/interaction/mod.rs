@@ -47,7 +47,11 @@
 //!    ladder of tensor rules (trapezoid in azimuth after a clustering map, Gauss–Legendre across;
 //!    [`rules`] docs); levels grow by about $1.44\times$ in node count, starting from a level
 //!    predicted from the gap and the tolerance, and stop when two successive levels agree to the
-//!    tolerance (and the two torque forms agree). The finer value is returned with the change
+//!    tolerance (and the two torque forms agree). Over an ellipsoid, unless the pose has both
+//!    mirror symmetries (the founding paper's pair), the tables are those of the aimed rule
+//!    ([`Parametrisation::Automatic`]; `aimed.rs`): polar angles about a pole aimed at the
+//!    nearest point of the other body's singular set, clustered toward it, so that the cost
+//!    does not depend on the pose. The finer value is returned with the change
 //!    as its error estimate, an upper estimate because each level's error is far below the
 //!    previous one's. Mirror symmetries about planes through both centroids, when the
 //!    surface's table and the field both have them to rounding, halve or quarter the nodes.

@@ -71,8 +71,8 @@ pub enum Parametrisation {
     /// $\theta$.
     PolarAzimuth,
     /// For ellipsoids, polar angles about a pole aimed at the other body, clustered toward it
-    /// ([`super::aimed`]); other surfaces, and tables asked for directly, use the
-    /// azimuth–height form.
+    /// (`interaction/aimed.rs` documents the clustering, the start and the certificate);
+    /// other surfaces, and tables asked for directly, use the azimuth–height form.
     Aimed,
 }
 
