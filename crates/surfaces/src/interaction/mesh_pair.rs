@@ -56,6 +56,7 @@ use super::overlap::CONTACT_MARGIN;
 use crate::mesh::{point_triangle_distance, segment_distance, TriangleMesh, TriangleRule};
 use crate::{CompensatedSum, CompensatedSum3, Real, Vec3};
 use nalgebra::Matrix3;
+use rayon::prelude::*;
 use std::sync::Arc;
 use surfgrav_potentials::{Field, InertiaTensor, Polyhedron, Pose, Potential, Region};
 
@@ -462,29 +463,45 @@ impl<'y> Source<'y> {
     }
 }
 
-fn level_sums(
+/// Faces per chunk of the node loop; chunks run in parallel (rayon) and are combined in
+/// their fixed order, so the result does not depend on the number of threads.
+const FACES_PER_CHUNK: usize = 256;
+
+/// One chunk's partial sums (X frame, without the density).
+#[derive(Debug, Clone, Copy, Default)]
+struct Partial {
+    force: Vec3,
+    force_acc: Vec3,
+    torque: Vec3,
+    torque_acc: Vec3,
+    energy: Real,
+    abs: [Real; 5],
+    bound: Real,
+    evaluations: usize,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn chunk_sums(
     geometry: &Geometry,
+    faces: std::ops::Range<usize>,
+    rule: &TriangleRule,
     level: usize,
     q: &Matrix3<Real>,
     t: &Vec3,
     source: &Source,
-    density: Real,
-) -> Level {
+    phi0: Real,
+) -> Partial {
     let mesh = geometry.mesh;
-    let rule = TriangleRule::cached(LEVELS[level].0).expect("orders of LEVELS exist");
     let qt = q.transpose();
-    let (phi0, _) = source.field(t);
-    let phi0 = phi0.potential;
     let mut force = CompensatedSum3::new();
     let mut force_acc = CompensatedSum3::new();
     let mut torque = CompensatedSum3::new();
     let mut torque_acc = CompensatedSum3::new();
     let mut energy = CompensatedSum::new();
-    let (mut abs_force, mut abs_torque, mut abs_energy) = (0.0, 0.0, 0.0);
-    let (mut abs_force_acc, mut abs_torque_acc) = (0.0, 0.0);
+    let mut abs = [0.0; 5];
     let mut bound: Real = 0.0;
-    let mut evaluations = 1;
-    for f in 0..mesh.len() {
+    let mut evaluations = 0;
+    for f in faces {
         let k = geometry.pieces(f, level);
         mesh.face_nodes(f, k, rule, |x, w| {
             let (field, b) = source.field(&(q * x + t));
@@ -495,21 +512,73 @@ fn level_sums(
             let r2 = x.norm_squared();
             let fw = w * dphi;
             force.add(&fw);
-            abs_force += fw.norm();
+            abs[0] += fw.norm();
             let tw = x.cross(w) * dphi;
             torque.add(&tw);
-            abs_torque += tw.norm();
+            abs[1] += tw.norm();
             let aw = a.dot(w);
             let fa = x * aw;
             force_acc.add(&fa);
-            abs_force_acc += fa.norm();
+            abs[3] += fa.norm();
             let ta = w.cross(&a) * r2;
             torque_acc.add(&ta);
-            abs_torque_acc += ta.norm();
-            let e = field.potential * x.dot(w) + 0.5 * r2 * aw;
-            energy.add(e);
-            abs_energy += (field.potential * x.dot(w)).abs() + (0.5 * r2 * aw).abs();
+            abs[4] += ta.norm();
+            let (e1, e2) = (field.potential * x.dot(w), 0.5 * r2 * aw);
+            energy.add(e1 + e2);
+            abs[2] += e1.abs() + e2.abs();
         });
+    }
+    Partial {
+        force: force.value(),
+        force_acc: force_acc.value(),
+        torque: torque.value(),
+        torque_acc: torque_acc.value(),
+        energy: energy.value(),
+        abs,
+        bound,
+        evaluations,
+    }
+}
+
+fn level_sums(
+    geometry: &Geometry,
+    level: usize,
+    q: &Matrix3<Real>,
+    t: &Vec3,
+    source: &Source,
+    density: Real,
+) -> Level {
+    let faces = geometry.mesh.len();
+    let rule = TriangleRule::cached(LEVELS[level].0).expect("orders of LEVELS exist");
+    let (phi0, _) = source.field(t);
+    let phi0 = phi0.potential;
+    let chunks: Vec<std::ops::Range<usize>> = (0..faces)
+        .step_by(FACES_PER_CHUNK)
+        .map(|s| s..(s + FACES_PER_CHUNK).min(faces))
+        .collect();
+    let partials: Vec<Partial> = chunks
+        .into_par_iter()
+        .map(|range| chunk_sums(geometry, range, rule, level, q, t, source, phi0))
+        .collect();
+    let mut force = CompensatedSum3::new();
+    let mut force_acc = CompensatedSum3::new();
+    let mut torque = CompensatedSum3::new();
+    let mut torque_acc = CompensatedSum3::new();
+    let mut energy = CompensatedSum::new();
+    let mut abs = [0.0; 5];
+    let mut bound: Real = 0.0;
+    let mut evaluations = 1;
+    for p in &partials {
+        force.add(&p.force);
+        force_acc.add(&p.force_acc);
+        torque.add(&p.torque);
+        torque_acc.add(&p.torque_acc);
+        energy.add(p.energy);
+        for (a, b) in abs.iter_mut().zip(&p.abs) {
+            *a += b;
+        }
+        bound = bound.max(p.bound);
+        evaluations += p.evaluations;
     }
     Level {
         force: force.value() * (-density),
@@ -517,11 +586,11 @@ fn level_sums(
         torque: torque.value() * (-density),
         torque_acc: torque_acc.value() * (0.5 * density),
         energy: energy.value() * (density / 3.0),
-        abs_force: abs_force * density,
-        abs_torque: abs_torque * density,
-        abs_energy: abs_energy * density / 3.0,
-        abs_force_acc: abs_force_acc * density,
-        abs_torque_acc: abs_torque_acc * 0.5 * density,
+        abs_force: abs[0] * density,
+        abs_torque: abs[1] * density,
+        abs_energy: abs[2] * density / 3.0,
+        abs_force_acc: abs[3] * density,
+        abs_torque_acc: abs[4] * 0.5 * density,
         bound,
         evaluations,
     }
