@@ -15,6 +15,9 @@
 //!   applies ([`nodes`] module docs).
 //! - [`CompensatedSum`], [`CompensatedSum3`]: the summation every node sum here uses, for the
 //!   engine's own loops too ([`sum`] module docs).
+//! - [`TriangleMesh`] and [`TriangleRule`]: a polyhedron's faces with their exact area vectors,
+//!   Stroud's conical product rules on triangles and uniform subdivision ([`mesh`] module docs;
+//!   the pairs in [`interaction::mesh_pair`]).
 //! - [`Lamina`] and [`LaminaNodes`]: the uniform disk as a lamina, with area and rim nodes and the
 //!   way the engine combines them ([`lamina`] module docs).
 //!

@@ -4,7 +4,7 @@
 //! # Rules on a triangle (Stroud's conical product)
 //!
 //! On the reference triangle $T = \{(x, y): x, y \ge 0,\ x + y \le 1\}$ the collapse
-//! $x = u$, $y = (1-u)\,t$ with $(u, t) \in [0,1]^2$ has Jacobian $1-u$:
+//! $x = u$, $y = (1-u)\,t$ with $(u, t) \in (0,1)^2$ has Jacobian $1-u$:
 //! $$\int_T f\,\mathrm dA = \int_0^1\!\!\int_0^1 f\bigl(u, (1-u)t\bigr)\,(1-u)\,\mathrm dt\,\mathrm du .$$
 //! For a polynomial $f$ of total degree $d$ the integrand is a polynomial of degree $\le d$ in
 //! $u$ (against the weight $1-u$) and in $t$. The $n$-point Gauss–Jacobi rule for the weight

@@ -338,3 +338,44 @@ fn didymos_standard_pair_at_1e_10() {
     // Snapshot of the work (a change of rules or of the choice shows here).
     assert!(r.evaluations <= 400, "{} evaluations", r.evaluations);
 }
+
+/// The KW4 pair at 1e-10 (Alpha 9168 faces at 1970 kg/m³, Beta 2292 faces at 2810 kg/m³, 2540 m
+/// apart): over Beta in Alpha's expansion (degree ~33 at 2.9 Alpha radii), within its estimate
+/// of the reference over Alpha at 1e-13. Ignored: ~1 s release, minutes in a debug build
+/// (`cargo test --release -p surfgrav-surfaces --test polyhedron_pairs -- --ignored`).
+#[test]
+#[ignore]
+fn kw4_pair_at_1e_10() {
+    let read = |name: &str, density: f64| {
+        let mesh = Mesh::read_obj(shapes().join(name), LengthUnit::Kilometres).unwrap();
+        Body::polyhedron(
+            Polyhedron::with_density(&mesh, density)
+                .unwrap()
+                .with_gravitational_constant(G)
+                .unwrap(),
+        )
+        .unwrap()
+    };
+    let (alpha, beta) = (read("kw4_alpha.obj", 1970.0), read("kw4_beta.obj", 2810.0));
+    let pa = Pose::identity();
+    let pb = Pose::new(Vec3::new(2540.0, 0.0, 0.0), Vec3::new(0.2, -0.3, 0.4));
+    let r = engine(1e-10, SurfaceChoice::Automatic)
+        .interact(&alpha, &pa, &beta, &pb)
+        .unwrap();
+    let reference = engine(1e-13, SurfaceChoice::A)
+        .interact(&alpha, &pa, &beta, &pb)
+        .unwrap();
+    let d = difference(&r, &reference);
+    println!(
+        "over {:?}: {} evaluations, estimate {:.2e}, true {:.2e}; reference {} evaluations (estimate {:.1e})",
+        r.integrated_over,
+        r.evaluations,
+        r.error_estimate,
+        d,
+        reference.evaluations,
+        reference.error_estimate
+    );
+    assert_eq!(r.integrated_over, Some(Side::B));
+    assert!(r.error_estimate <= 1e-10);
+    assert!(d <= r.error_estimate + reference.error_estimate);
+}

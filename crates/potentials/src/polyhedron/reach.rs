@@ -43,9 +43,9 @@ impl Polyhedron {
     }
 
     /// The degree of the expansion that meets `relative_bound` (on $|T_N|/|\Phi|$ and
-    /// $|\nabla T_N|/|\mathbf a|$, see [`super::multipole`]) at `radii` circumscribing radii
-    /// from the centroid; `None` inside [`REACH_RADII`] or where [`REACH_DEGREE`] does not
-    /// suffice.
+    /// $|\nabla T_N|/|\mathbf a|$, the rigorous truncation bounds of the far-field expansion,
+    /// [`super`] docs) at `radii` circumscribing radii from the centroid; `None` inside
+    /// [`REACH_RADII`] or where [`REACH_DEGREE`] does not suffice.
     pub fn expansion_degree(&self, radii: Real, relative_bound: Real) -> Option<usize> {
         let usable = radii >= REACH_RADII && relative_bound > 0.0;
         if !usable {

@@ -73,6 +73,10 @@
 //!
 //! [`MethodChoice::FixedLevel`] evaluates one table of the ladder, uncertified.
 //!
+//! **Polyhedra** ([`Body::polyhedron`]) go to [`mesh_pair`]: their own contact test, the point
+//! formula with a sphere, and either the mesh's triangle rules in the partner's field or the
+//! partner's surface in the polyhedron's certified expansion, whichever is predicted cheaper.
+//!
 //! **Which surface.** The integrand $\Phi_B$ continued into B is singular only on B's focal set
 //! (the focal disk of an oblate spheroid, the focal segment of a prolate one, the focal ellipse
 //! of a triaxial ellipsoid, a point for a sphere, the disk itself for a disk), so convergence
