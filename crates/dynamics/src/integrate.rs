@@ -977,6 +977,114 @@ pub struct Adaptive {
 /// of A, acceleration of B) per stage.
 type Stages = [[Vec3; 4]; MAX_STAGES];
 
+/// The step-size control shared by the adaptive loops (translation and rotation): the step
+/// factor $0.9\,\mathrm{err}^{-1/(q+1)}$ within the tableau's range, no growth right after a
+/// rejection, the step floor and the step budget (module documentation).
+#[derive(Debug, Clone)]
+pub(crate) struct StepControl {
+    exponent: Real,
+    shrink_limit: Real,
+    grow_limit: Real,
+    min_step: Real,
+    max_step: Real,
+    max_steps: usize,
+    last_rejected: bool,
+    /// Accepted steps so far.
+    pub steps: usize,
+    /// Rejected steps so far.
+    pub rejected: usize,
+}
+
+impl StepControl {
+    /// The control of `tableau` over a run of length `span`; a `min_step` of 0 means
+    /// $10^{-12}$ × `span`.
+    pub(crate) fn new(
+        tableau: &Tableau,
+        min_step: Real,
+        max_step: Real,
+        max_steps: usize,
+        span: Real,
+    ) -> Self {
+        let (shrink_limit, grow_limit) = tableau.factor_range;
+        Self {
+            exponent: -1.0 / Real::from(tableau.error_order + 1),
+            shrink_limit,
+            grow_limit,
+            min_step: if min_step > 0.0 {
+                min_step
+            } else {
+                1e-12 * span
+            },
+            max_step,
+            max_steps,
+            last_rejected: false,
+            steps: 0,
+            rejected: 0,
+        }
+    }
+
+    /// The step to try from `time` toward `t_end` with the proposed `h`, and whether it is the
+    /// last (shortened to land on `t_end`).
+    ///
+    /// # Errors
+    /// The step budget is spent; the step fell below its floor.
+    pub(crate) fn next(
+        &self,
+        h: Real,
+        time: Real,
+        t_end: Real,
+    ) -> Result<(Real, bool), DynamicsError> {
+        if self.steps + self.rejected >= self.max_steps {
+            return Err(DynamicsError::TooManySteps {
+                time,
+                max_steps: self.max_steps,
+            });
+        }
+        let remaining = t_end - time;
+        let last = h >= remaining;
+        let h_try = if last { remaining } else { h };
+        if h_try < self.min_step && !last {
+            return Err(DynamicsError::StepSizeTooSmall {
+                time,
+                step: h_try,
+                min_step: self.min_step,
+            });
+        }
+        Ok((h_try, last))
+    }
+
+    /// A step of `h_try` was rejected with error norm `error` (> 1): the next step to try.
+    pub(crate) fn reject(&mut self, h_try: Real, error: Real) -> Real {
+        self.rejected += 1;
+        self.last_rejected = true;
+        h_try * (0.9 * error.powf(self.exponent)).max(self.shrink_limit)
+    }
+
+    /// A step of `h_try` was refused for a stage's overlap: try a quarter of it.
+    pub(crate) fn retry_shorter(&mut self, h_try: Real) -> Real {
+        self.rejected += 1;
+        self.last_rejected = true;
+        0.25 * h_try
+    }
+
+    /// A step of `h_try` with error norm `error` (≤ 1) was accepted: the next step.
+    pub(crate) fn accept(&mut self, h_try: Real, error: Real) -> Real {
+        self.steps += 1;
+        let grow = if error > 0.0 {
+            (0.9 * error.powf(self.exponent)).clamp(self.shrink_limit, self.grow_limit)
+        } else {
+            self.grow_limit
+        };
+        let grow = if self.last_rejected {
+            grow.min(1.0)
+        } else {
+            grow
+        };
+        self.last_rejected = false;
+        (h_try * grow).min(self.max_step)
+    }
+}
+
 /// $\mathbf y + h\sum_j a_j\mathbf k_j$, the sum formed before the multiplication by h: a
 /// product $a_j h$ rounded once would repeat the same relative error at every step of equal
 /// length (a systematic error), while the rounding of $h\sum_j a_j\mathbf k_j$ depends on the
@@ -1308,14 +1416,13 @@ impl Adaptive {
             );
         }
         let span = t_end - t_start;
-        let min_step = if self.min_step > 0.0 {
-            self.min_step
-        } else {
-            1e-12 * span
-        };
-        let tableau = self.pair.tableau();
-        let exponent = -1.0 / Real::from(tableau.error_order + 1);
-        let (shrink_limit, grow_limit) = tableau.factor_range;
+        let mut control = StepControl::new(
+            self.pair.tableau(),
+            self.min_step,
+            self.max_step,
+            self.max_steps,
+            span,
+        );
         let mut dynamics = Dynamics::new(model, *initial, t_start);
         let mut current = initial_sample(&mut dynamics, initial, t_start)?;
         if let Some((clock, emit)) = output.as_mut() {
@@ -1328,25 +1435,8 @@ impl Adaptive {
         // Low-order part of the propagated state (compensated summation).
         let mut carry = [Vec3::zeros(); 4];
         let mut h = self.first_step(&current, span);
-        let (mut steps, mut rejected) = (0usize, 0usize);
-        let mut last_rejected = false;
         loop {
-            if steps + rejected >= self.max_steps {
-                return Err(DynamicsError::TooManySteps {
-                    time: current.time,
-                    max_steps: self.max_steps,
-                });
-            }
-            let remaining = t_end - current.time;
-            let last = h >= remaining;
-            let h_try = if last { remaining } else { h };
-            if h_try < min_step && !last {
-                return Err(DynamicsError::StepSizeTooSmall {
-                    time: current.time,
-                    step: h_try,
-                    min_step,
-                });
-            }
+            let (h_try, last) = control.next(h, current.time, t_end)?;
             let result = self.rk_step(&mut dynamics, &current, &carry, h_try, &mut k);
             let (sample, next_carry, error) = match result {
                 Ok((s, c, e)) => (Ok(s), c, e),
@@ -1356,9 +1446,7 @@ impl Adaptive {
                 return Err(DynamicsError::NonFinite { time: current.time });
             }
             if error > 1.0 {
-                rejected += 1;
-                last_rejected = true;
-                h = h_try * (0.9 * error.powf(exponent)).max(shrink_limit);
+                h = control.reject(h_try, error);
                 continue;
             }
             match classify(&dynamics, sample, current.time)? {
@@ -1371,13 +1459,13 @@ impl Adaptive {
                     }
                     current = next;
                     carry = next_carry;
-                    steps += 1;
+                    let next_h = control.accept(h_try, error);
                     observer(&current);
                     if let Some(event) = escaped(model, self.escape_distance, &current) {
                         return Ok(RunSummary {
                             last: current,
-                            steps,
-                            rejected_steps: rejected,
+                            steps: control.steps,
+                            rejected_steps: control.rejected,
                             force_evaluations: dynamics.evaluations,
                             termination: Termination::Escape(Box::new(event)),
                         });
@@ -1385,14 +1473,7 @@ impl Adaptive {
                     if last {
                         break;
                     }
-                    let grow = if error > 0.0 {
-                        (0.9 * error.powf(exponent)).clamp(shrink_limit, grow_limit)
-                    } else {
-                        grow_limit
-                    };
-                    let grow = if last_rejected { grow.min(1.0) } else { grow };
-                    last_rejected = false;
-                    h = (h_try * grow).min(self.max_step);
+                    h = next_h;
                 }
                 Trial::Touching => {
                     let mut scratch: Stages = [[Vec3::zeros(); 4]; MAX_STAGES];
@@ -1403,9 +1484,7 @@ impl Adaptive {
                     let Some(event) = locate_contact(&mut dynamics, &current, h_try, &mut step)?
                     else {
                         // Only a stage overlapped: reject and retry with a shorter step.
-                        rejected += 1;
-                        last_rejected = true;
-                        h = 0.25 * h_try;
+                        h = control.retry_shorter(h_try);
                         continue;
                     };
                     if let Some((clock, emit)) = output.as_mut() {
@@ -1416,8 +1495,8 @@ impl Adaptive {
                     observer(&event.sample);
                     return Ok(RunSummary {
                         last: event.sample,
-                        steps,
-                        rejected_steps: rejected,
+                        steps: control.steps,
+                        rejected_steps: control.rejected,
                         force_evaluations: dynamics.evaluations,
                         termination: Termination::Contact(Box::new(event)),
                     });
@@ -1426,8 +1505,8 @@ impl Adaptive {
         }
         Ok(RunSummary {
             last: current,
-            steps,
-            rejected_steps: rejected,
+            steps: control.steps,
+            rejected_steps: control.rejected,
             force_evaluations: dynamics.evaluations,
             termination: Termination::Completed,
         })

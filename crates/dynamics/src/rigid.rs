@@ -61,7 +61,7 @@
 
 use crate::integrate::{
     check_span, escaped, ContactEvent, DynamicsError, FixedScheme, OutputClock, RunSummary,
-    Termination,
+    StepControl, Termination,
 };
 use crate::interpolate::hermite_quintic;
 use crate::model::{InteractionError, InteractionModel, Wrench};
@@ -895,37 +895,19 @@ pub(crate) fn integrate(
             Ok(finish(&system, &current, count, 0, Termination::Completed))
         }
         Method::Adaptive(settings) => {
-            let min_step = if settings.min_step > 0.0 {
-                settings.min_step
-            } else {
-                1e-12 * span
-            };
-            let tableau = settings.tableau;
-            let exponent = -1.0 / Real::from(tableau.error_order + 1);
-            let (shrink_limit, grow_limit) = tableau.factor_range;
+            let mut control = StepControl::new(
+                settings.tableau,
+                settings.min_step,
+                settings.max_step,
+                settings.max_steps,
+                span,
+            );
             let mut k: Stages = [[0.0; N]; MAX_STAGES];
             let y0 = current.state.flat();
             let f0 = system.derivative(&y0, &current.state, &current.wrench);
             let mut h = settings.first_step(&y0, &f0, span);
-            let (mut steps, mut rejected) = (0usize, 0usize);
-            let mut last_rejected = false;
             loop {
-                if steps + rejected >= settings.max_steps {
-                    return Err(DynamicsError::TooManySteps {
-                        time: current.time,
-                        max_steps: settings.max_steps,
-                    });
-                }
-                let remaining = t_end - current.time;
-                let last = h >= remaining;
-                let h_try = if last { remaining } else { h };
-                if h_try < min_step && !last {
-                    return Err(DynamicsError::StepSizeTooSmall {
-                        time: current.time,
-                        step: h_try,
-                        min_step,
-                    });
-                }
+                let (h_try, last) = control.next(h, current.time, t_end)?;
                 let result = system.pair_step(&settings, &current, h_try, &mut k);
                 let (result, error) = match result {
                     Ok((p, e)) => (Ok(p), e),
@@ -935,9 +917,7 @@ pub(crate) fn integrate(
                     return Err(DynamicsError::NonFinite { time: current.time });
                 }
                 if error > 1.0 {
-                    rejected += 1;
-                    last_rejected = true;
-                    h = h_try * (0.9 * error.powf(exponent)).max(shrink_limit);
+                    h = control.reject(h_try, error);
                     continue;
                 }
                 match system.clear(result, current.time)? {
@@ -954,24 +934,18 @@ pub(crate) fn integrate(
                             system.emit_between(&current, &next, dense.as_ref(), &mut output);
                         }
                         current = next;
-                        steps += 1;
+                        let next_h = control.accept(h_try, error);
                         let sample = system.sample(&current);
                         observer(&sample);
                         if let Some(event) = escaped(model, escape_distance, &sample) {
                             let termination = Termination::Escape(Box::new(event));
+                            let (steps, rejected) = (control.steps, control.rejected);
                             return Ok(finish(&system, &current, steps, rejected, termination));
                         }
                         if last {
                             break;
                         }
-                        let grow = if error > 0.0 {
-                            (0.9 * error.powf(exponent)).clamp(shrink_limit, grow_limit)
-                        } else {
-                            grow_limit
-                        };
-                        let grow = if last_rejected { grow.min(1.0) } else { grow };
-                        last_rejected = false;
-                        h = (h_try * grow).min(settings.max_step);
+                        h = next_h;
                     }
                     None => {
                         let mut scratch: Stages = [[0.0; N]; MAX_STAGES];
@@ -987,23 +961,22 @@ pub(crate) fn integrate(
                                 return Ok(finish(
                                     &system,
                                     &p,
-                                    steps,
-                                    rejected,
+                                    control.steps,
+                                    control.rejected,
                                     Termination::Contact(Box::new(event)),
                                 ));
                             }
                             Ok(Advance::Reached(_))
                             | Err(DynamicsError::ContactUnresolved { .. }) => {
                                 // Only a stage overlapped: reject, retry shorter.
-                                rejected += 1;
-                                last_rejected = true;
-                                h = 0.25 * h_try;
+                                h = control.retry_shorter(h_try);
                             }
                             Err(e) => return Err(e),
                         }
                     }
                 }
             }
+            let (steps, rejected) = (control.steps, control.rejected);
             Ok(finish(
                 &system,
                 &current,
