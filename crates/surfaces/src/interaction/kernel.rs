@@ -246,19 +246,19 @@ pub(crate) fn solid_sums<P: Potential + ?Sized>(
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct NodeConstants {
     /// $\mathbf x\times\mathbf W$.
-    moment: Vec3,
+    pub(crate) moment: Vec3,
     /// $\tfrac12|\mathbf x|^2$.
-    half_x2: Real,
+    pub(crate) half_x2: Real,
     /// $\mathbf x\cdot\mathbf W$.
-    x_dot_w: Real,
+    pub(crate) x_dot_w: Real,
     /// $|\mathbf W|$.
-    w_norm: Real,
+    pub(crate) w_norm: Real,
     /// $|\mathbf x\times\mathbf W|$.
-    moment_norm: Real,
+    pub(crate) moment_norm: Real,
     /// $\mathbf x$.
-    x: Vec3,
+    pub(crate) x: Vec3,
     /// $|\mathbf x|$.
-    x_norm: Real,
+    pub(crate) x_norm: Real,
 }
 
 impl NodeConstants {
@@ -296,11 +296,16 @@ pub(crate) struct SolidBlock {
 /// The running sizes of the solid integrand's terms (the rounding bounds of [`SolidSums`]).
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct SolidMagnitudes {
-    flux: Real,
-    moment: Real,
-    energy: Real,
-    acceleration: Real,
-    potential: Real,
+    /// $\sum|\Phi - \Phi_0||\mathbf W|$.
+    pub(crate) flux: Real,
+    /// $\sum|\Phi - \Phi_0||\mathbf x\times\mathbf W|$.
+    pub(crate) moment: Real,
+    /// $\sum|\Phi\,\mathbf x\cdot\mathbf W| + |\tfrac12|\mathbf x|^2\mathbf a\cdot\mathbf W|$.
+    pub(crate) energy: Real,
+    /// $\sum|\mathbf x||\mathbf a\cdot\mathbf W|$ (far away only).
+    pub(crate) acceleration: Real,
+    /// $\sum|\Phi||\mathbf W|$.
+    pub(crate) potential: Real,
 }
 
 impl SolidMagnitudes {

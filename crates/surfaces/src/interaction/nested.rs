@@ -30,7 +30,9 @@
 //! start one level coarser in height: the founding paper's pair at separation 30 certifies
 //! 10⁻¹² on 63 nodes (9 azimuths × 7 heights) instead of 99.
 
-use super::kernel::{FrameMap, SolidSums};
+use super::kernel::{
+    add_solid_node, FrameMap, NodeConstants, SolidBlock, SolidMagnitudes, SolidSums,
+};
 use super::rules::CLUSTERING;
 use crate::{Real, Vec3};
 use std::collections::HashMap;
@@ -153,52 +155,35 @@ pub(crate) const COMPONENTS: usize = 18;
 /// $|\mathbf W|$, $|\mathbf x\times\mathbf W|$ and $|\mathbf x|$.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct NodeGeometry {
-    r: Vec3,
+    /// The weighted area vector $\mathbf W$.
     w: Vec3,
-    moment: Vec3,
-    half_x2: Real,
-    x_dot_w: Real,
-    w_norm: Real,
-    moment_norm: Real,
-    x_norm: Real,
+    /// The node's constants, $\mathbf x = \mathbf r$ (the centroid is the origin).
+    k: NodeConstants,
 }
 
-/// Adds node `n`'s terms, with the source's `field` there, to `acc` (inlined into the line
-/// loop so the sums stay in registers).
-#[inline(always)]
-fn add_node<const FAR: bool>(
-    n: &NodeGeometry,
-    field: &Field,
-    map: &FrameMap,
-    reference: Real,
-    acc: &mut [Real; COMPONENTS],
-) {
-    let phi = field.potential;
-    let acceleration = map.back(&field.acceleration);
-    let relative = phi - reference;
-    let a_dot_w = acceleration.dot(&n.w);
-    let (e_potential, e_gradient) = (phi * n.x_dot_w, n.half_x2 * a_dot_w);
-    let gradient = n.w.cross(&acceleration) * n.half_x2;
-    acc[0] += n.w.x * relative;
-    acc[1] += n.w.y * relative;
-    acc[2] += n.w.z * relative;
-    acc[3] += n.moment.x * relative;
-    acc[4] += n.moment.y * relative;
-    acc[5] += n.moment.z * relative;
-    acc[6] += gradient.x;
-    acc[7] += gradient.y;
-    acc[8] += gradient.z;
-    acc[9] += e_potential + e_gradient;
-    acc[10] += relative.abs() * n.w_norm;
-    acc[11] += relative.abs() * n.moment_norm;
-    acc[12] += e_potential.abs() + e_gradient.abs();
-    acc[17] += phi.abs() * n.w_norm;
-    if FAR {
-        acc[13] += n.r.x * a_dot_w;
-        acc[14] += n.r.y * a_dot_w;
-        acc[15] += n.r.z * a_dot_w;
-        acc[16] += n.x_norm * a_dot_w.abs();
-    }
+/// The terms of a segment's nodes summed by the kernel's one integrand ([`add_solid_node`]),
+/// as the nested rule's components (see [`COMPONENTS`] and [`solid_sums_from`]).
+fn components(block: &SolidBlock, sizes: &SolidMagnitudes) -> [Real; COMPONENTS] {
+    [
+        block.flux.x,
+        block.flux.y,
+        block.flux.z,
+        block.moment.x,
+        block.moment.y,
+        block.moment.z,
+        block.gradient_moment.x,
+        block.gradient_moment.y,
+        block.gradient_moment.z,
+        block.energy,
+        sizes.flux,
+        sizes.moment,
+        sizes.energy,
+        block.acceleration_flux.x,
+        block.acceleration_flux.y,
+        block.acceleration_flux.z,
+        sizes.acceleration,
+        sizes.potential,
+    ]
 }
 
 /// The geometry of the nodes `range` (nested order) of height node `k` of an ellipsoid of
@@ -227,14 +212,16 @@ fn line_geometry(
         let moment = Vec3::new(ry * wz - z * wy, z * wx - rx * wz, rx * wy - ry * wx);
         let x2 = rx * rx + ry * ry + z2;
         NodeGeometry {
-            r: Vec3::new(rx, ry, z),
             w: Vec3::new(wx, wy, wz),
-            moment,
-            half_x2: 0.5 * x2,
-            x_dot_w: rx * wx + ry * wy + z * wz,
-            w_norm: (wx * wx + wy * wy + wz * wz).sqrt(),
-            moment_norm: moment.norm(),
-            x_norm: x2.sqrt(),
+            k: NodeConstants {
+                x: Vec3::new(rx, ry, z),
+                moment,
+                half_x2: 0.5 * x2,
+                x_dot_w: rx * wx + ry * wy + z * wz,
+                w_norm: (wx * wx + wy * wy + wz * wz).sqrt(),
+                moment_norm: moment.norm(),
+                x_norm: x2.sqrt(),
+            },
         }
     }));
 }
@@ -346,19 +333,19 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
     // same length; every other constant is shared.
     let mirrored = |n: &NodeGeometry| {
         let mut m = *n;
-        m.r.z = -n.r.z;
+        m.k.x.z = -n.k.x.z;
         m.w.z = -n.w.z;
-        m.moment.x = -n.moment.x;
-        m.moment.y = -n.moment.y;
+        m.k.moment.x = -n.k.moment.x;
+        m.k.moment.y = -n.k.moment.y;
         m
     };
     fields.clear();
-    fields.extend(nodes.iter().map(|n| source.field(&map.apply(&n.r))));
+    fields.extend(nodes.iter().map(|n| source.field(&map.apply(&n.k.x))));
     if mirror {
         fields.extend(
             nodes
                 .iter()
-                .map(|n| source.field(&map.apply(&mirrored(n).r))),
+                .map(|n| source.field(&map.apply(&mirrored(n).k.x))),
         );
     }
     let (upper, lower) = fields.split_at(nodes.len());
@@ -367,13 +354,20 @@ pub(crate) fn ellipsoid_line<P: Potential + ?Sized, const FAR: bool>(
     let mut from = 0;
     for (&end, out) in ends.iter().zip(outs) {
         let to = end - start;
-        let mut acc = [0.0; COMPONENTS];
+        let mut block = SolidBlock::default();
+        let mut sizes = SolidMagnitudes::default();
         for (i, n) in nodes[from..to].iter().enumerate() {
-            add_node::<FAR>(n, &upper[from + i], map, reference, &mut acc);
+            let field = &upper[from + i];
+            add_solid_node::<FAR, true>(&mut block, &mut sizes, field, map, &n.w, &n.k, reference);
             if mirror {
-                add_node::<FAR>(&mirrored(n), &lower[from + i], map, reference, &mut acc);
+                let m = mirrored(n);
+                let field = &lower[from + i];
+                add_solid_node::<FAR, true>(
+                    &mut block, &mut sizes, field, map, &m.w, &m.k, reference,
+                );
             }
         }
+        let acc = components(&block, &sizes);
         for ((o, p), v) in out.iter_mut().zip(prefix.iter_mut()).zip(acc) {
             *p += v;
             *o += *p;
@@ -427,15 +421,15 @@ mod tests {
                 let (b, _) = full.line(&set, axes, k, range.clone());
                 assert_eq!(a, b.to_vec(), "line {k}, nodes {range:?}");
                 for n in &a {
-                    let on = (n.r.x / axes[0]).powi(2)
-                        + (n.r.y / axes[1]).powi(2)
-                        + (n.r.z / axes[2]).powi(2);
+                    let on = (n.k.x.x / axes[0]).powi(2)
+                        + (n.k.x.y / axes[1]).powi(2)
+                        + (n.k.x.z / axes[2]).powi(2);
                     assert!((on - 1.0).abs() < 1e-14, "{on}");
                     // The surface normal at r is (x/a², y/b², z/c²).
                     let normal = Vec3::new(
-                        n.r.x / (axes[0] * axes[0]),
-                        n.r.y / (axes[1] * axes[1]),
-                        n.r.z / (axes[2] * axes[2]),
+                        n.k.x.x / (axes[0] * axes[0]),
+                        n.k.x.y / (axes[1] * axes[1]),
+                        n.k.x.z / (axes[2] * axes[2]),
                     );
                     assert!(n.w.cross(&normal).norm() <= 1e-14 * n.w.norm() * normal.norm());
                     assert!(n.w.dot(&normal) > 0.0);
