@@ -373,7 +373,12 @@ mod tests {
                 total += w;
                 first += x * w.norm();
             });
-            assert!((total - mesh.area_vector(0)).norm() < 1e-15 * total.norm());
+            // Up to 100 weights summed: 64 ε relative is the sum's worst rounding with margin.
+            let gap = (total - mesh.area_vector(0)).norm();
+            assert!(
+                gap < 64.0 * Real::EPSILON * total.norm(),
+                "k = {k}: {gap:e}"
+            );
             // The centroid of the face from the nodes (degree 1 exact on every piece).
             let c = first / mesh.area_vector(0).norm();
             assert!((c - mesh.centre(0)).norm() < 1e-14, "k = {k}");
