@@ -197,3 +197,102 @@ fn bad_input_is_one_line_exit_2() {
         assert!(!stderr.contains("relax"), "{args:?}: {stderr}");
     }
 }
+
+/// `interact --batch`: one JSON object per configuration line, each the single command's
+/// result plus its warm time; a bad line is exit 2 naming the line, with nothing on stdout.
+#[test]
+fn batch_gives_the_single_results_with_times() {
+    let dir = std::env::temp_dir().join(format!("surfgrav-batch-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("poses.jsonl");
+    let spheroid = "spheroid:equatorial=1,polar=0.25,mass=1";
+    let lines = [
+        format!(r#"{{"a": "{spheroid}", "b": "{spheroid}", "position": [3, 0, 0]}}"#),
+        format!(
+            r#"{{"a": "{spheroid}", "b": "ellipsoid:a=0.5,b=0.4,c=0.3,mass=0.2", "position": [0.5, 2.5, 1], "orientation_b": [0.3, -0.2, 0.1], "tolerance": 1e-10}}"#
+        ),
+        String::new(),
+        r#"{"a": "sphere:radius=1,mass=2", "b": "point:mass=3", "position": [0, 4, 0], "g": 0.5}"#
+            .to_string(),
+    ];
+    std::fs::write(&file, lines.join("\n")).unwrap();
+    let out = surfgrav(&["interact", "--batch", file.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let results: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(results.len(), 3);
+    let singles = [
+        vec!["--a", spheroid, "--b", spheroid, "--position", "3,0,0"],
+        vec![
+            "--a",
+            spheroid,
+            "--b",
+            "ellipsoid:a=0.5,b=0.4,c=0.3,mass=0.2",
+            "--position",
+            "0.5,2.5,1",
+            "--orientation-b",
+            "0.3,-0.2,0.1",
+            "--tolerance",
+            "1e-10",
+        ],
+        vec![
+            "--a",
+            "sphere:radius=1,mass=2",
+            "--b",
+            "point:mass=3",
+            "--position",
+            "0,4,0",
+            "--g",
+            "0.5",
+        ],
+    ];
+    for (batch, args) in results.iter().zip(singles) {
+        let mut full = vec!["interact"];
+        full.extend(args);
+        let single: serde_json::Value = serde_json::from_slice(&surfgrav(&full).stdout).unwrap();
+        for key in [
+            "force_on_a",
+            "torque_on_b",
+            "potential_energy",
+            "method",
+            "evaluations",
+        ] {
+            assert_eq!(batch[key], single[key], "{key}");
+        }
+        let seconds = batch["seconds"].as_f64().unwrap();
+        assert!(seconds > 0.0 && seconds < 1.0, "{seconds}");
+        assert!(single.get("seconds").is_none());
+    }
+    // A bad second line: nothing printed, the line named.
+    std::fs::write(
+        &file,
+        format!(
+            "{}\n{{\"a\": \"{spheroid}\", \"b\": \"{spheroid}\", \"position\": [3, 0]}}\n",
+            lines[0]
+        ),
+    )
+    .unwrap();
+    let out = surfgrav(&["interact", "--batch", file.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("poses.jsonl:2:"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    // Overlapping bodies in a line are that line's error too.
+    std::fs::write(
+        &file,
+        format!(r#"{{"a": "{spheroid}", "b": "{spheroid}", "position": [1, 0, 0]}}"#),
+    )
+    .unwrap();
+    let out = surfgrav(&["interact", "--batch", file.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("poses.jsonl:1:"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
