@@ -62,12 +62,12 @@
 //! face centres and the other's centroid.
 
 use super::body::{Body, BodyShape};
-use super::engine::{
+use super::error::{InteractionError, Side};
+use super::overlap::CONTACT_MARGIN;
+use super::{
     Interaction, InteractionEngine, InteractionOptions, Method, MethodChoice, SurfaceChoice,
     ANALYTIC_RELATIVE_ERROR, ROUNDING_PER_TERM,
 };
-use super::error::{InteractionError, Side};
-use super::overlap::CONTACT_MARGIN;
 use crate::mesh::{point_triangle_distance, segment_distance, TriangleMesh, TriangleRule};
 use crate::{CompensatedSum, CompensatedSum3, Real, Vec3};
 use nalgebra::Matrix3;
