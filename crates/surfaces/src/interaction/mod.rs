@@ -132,20 +132,24 @@ mod error;
 mod kernel;
 pub mod mesh_pair;
 pub mod nested;
+mod options;
 pub mod overlap;
 pub mod rules;
 pub mod work_precision;
 
 pub use body::{Body, BodyShape};
 pub use engine::{
-    Evaluation, ForceInteraction, Interaction, InteractionEngine, InteractionOptions, Method,
-    MethodChoice, Request, SurfaceChoice, ANALYTIC_RELATIVE_ERROR, CANCELLATION_RATIO,
-    FAR_FIELD_RATIO, ROUNDING_PER_TERM,
+    InteractionEngine, ANALYTIC_RELATIVE_ERROR, CANCELLATION_RATIO, FAR_FIELD_RATIO,
+    ROUNDING_PER_TERM,
 };
 pub use error::{InteractionError, Side};
 pub use kernel::{
     integrate_over_lamina, integrate_over_solid, FrameMap, LaminaIntegrals, LaminaSums,
     SolidIntegrals, SolidSums, BLOCK,
+};
+pub use options::{
+    Evaluation, ForceInteraction, Interaction, InteractionOptions, Method, MethodChoice, Request,
+    SurfaceChoice,
 };
 pub use rules::Parametrisation;
 
