@@ -379,3 +379,41 @@ fn kw4_pair_at_1e_10() {
     assert!(r.error_estimate <= 1e-10);
     assert!(d <= r.error_estimate + reference.error_estimate);
 }
+
+/// Faces are cut where the partner is close relative to their size: at one fixed level of the
+/// ladder, the same mesh beside a sphere-like partner 0.02 away spends more evaluations than
+/// 3 away (the far pair uses one piece per face: faces × n²), and the certified result close
+/// by still lies within its estimate of the reference over the partner.
+#[test]
+fn faces_near_the_partner_are_subdivided() {
+    let a = poly(&Mesh::ellipsoid(1.0, 0.7, 0.5, 1), 1.0);
+    let b = Body::ellipsoid(Ellipsoid::new(0.5, 0.45, 0.4, 0.5).unwrap()).unwrap();
+    let fixed = |gap: f64| {
+        let mut e = InteractionEngine::new(InteractionOptions {
+            method: MethodChoice::FixedLevel(3),
+            surface: SurfaceChoice::A,
+            ..InteractionOptions::default()
+        })
+        .unwrap();
+        e.interact(&a, &Pose::identity(), &b, &at(1.5 + gap, 0.0, 0.0))
+            .unwrap()
+            .evaluations
+    };
+    let (near, far) = (fixed(0.02), fixed(3.0));
+    println!("level 3 (16 points per piece): {near} evaluations 0.02 away, {far} at 3");
+    assert_eq!(far, 80 * 16 + 1);
+    assert!(near > far);
+    let pb = at(1.52, 0.0, 0.0);
+    let r = engine(1e-10, SurfaceChoice::A)
+        .interact(&a, &Pose::identity(), &b, &pb)
+        .unwrap();
+    let reference = engine(1e-13, SurfaceChoice::B)
+        .interact(&a, &Pose::identity(), &b, &pb)
+        .unwrap();
+    let d = difference(&r, &reference);
+    println!(
+        "0.02 away at 1e-10: {} evaluations, estimate {:.2e}, true {d:.2e}",
+        r.evaluations, r.error_estimate
+    );
+    assert!(d <= r.error_estimate + reference.error_estimate);
+}
