@@ -793,6 +793,7 @@ impl InteractionEngine {
             max_evaluations: self.options.max_evaluations,
             growth: self.growth(),
             jump: false,
+            single_step: false,
         }
     }
 
@@ -813,8 +814,11 @@ impl InteractionEngine {
             ..*p
         };
         let start = aim.start;
+        // The product rule (Gauss–Legendre in cos θ over the whole range, no split halves)
+        // gains two degrees per node: a step of one node suffices.
         let settings = LadderSettings {
             jump: true,
+            single_step: aim.cluster == 0,
             ..self.ladder_settings()
         };
         let grids = &mut self.aimed_grids;
@@ -1046,6 +1050,8 @@ struct LadderSettings {
     /// split Gauss–Legendre halves stall from one level to the next, so the change after a
     /// jump can understate the jumped level's error); without it, 3.6e-13 and 3.2e-14.
     jump: bool,
+    /// Steps of one node where the ladder would step two (see `aimed_ladder`).
+    single_step: bool,
 }
 
 /// A ladder of levels from `start` (a level named by its transverse count): `size(level)` is
@@ -1135,7 +1141,11 @@ fn run_ladder(
                 }),
             };
         }
-        let mut next = next_transverse(level, growth);
+        let mut next = if settings.single_step {
+            (level + 1).max((growth * Real::from(level)).ceil() as u16)
+        } else {
+            next_transverse(level, growth)
+        };
         let mut jump = false;
         if let (true, false, Some(before), Some(change)) = (
             settings.jump,
