@@ -696,6 +696,9 @@ pub(crate) type Emit<'a> = Option<(&'a mut OutputClock, &'a mut dyn FnMut(Real, 
 /// Subdivisions allowed when stages overshoot into overlap without contact.
 const MAX_SUBDIVISION_DEPTH: u32 = 40;
 
+/// A contact is located to this fraction of the step that reached it.
+const CONTACT_RESOLUTION: Real = 1e-12;
+
 /// Outcome of a step that may end in contact.
 enum Advance {
     Reached(Point),
@@ -747,7 +750,8 @@ impl System<'_> {
         let (mut lo, mut hi) = (0.0, h);
         let mut best = *from;
         let mut hi_at_end = end_overlap;
-        for _ in 0..200 {
+        // Bisect to CONTACT_RESOLUTION of the step (the located contact's accuracy in time).
+        while hi - lo > CONTACT_RESOLUTION * h {
             let mid = 0.5 * (lo + hi);
             if mid <= lo || mid >= hi {
                 break;
@@ -768,10 +772,21 @@ impl System<'_> {
                 }
             }
         }
-        if hi_at_end
-            && (hi - lo)
-                <= 1e-9 * h.abs().max(Real::MIN_POSITIVE) + 4.0 * Real::EPSILON * from.time.abs()
-        {
+        if !hi_at_end {
+            // Only a stage overlapped at the boundary (RK4's last stage runs ahead of the step's
+            // end): drift the last clear state over a few resolutions; if that touches, the
+            // trajectory itself is at contact within them.
+            let mut probe = best.state;
+            self.drift(&mut probe, 4.0 * CONTACT_RESOLUTION * h);
+            let (pa, pb) = probe.poses();
+            self.evaluations += 1;
+            hi_at_end = self.touching(&probe)
+                || matches!(
+                    self.model.wrench(&pa, &pb),
+                    Err(InteractionError::Overlap { .. })
+                );
+        }
+        if hi_at_end {
             return Ok(Advance::Contact(best));
         }
         if depth >= MAX_SUBDIVISION_DEPTH {
