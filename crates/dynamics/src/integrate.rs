@@ -518,23 +518,35 @@ fn locate_contact(
         }
         let remaining = from.time + h - best.time;
         if delta > 0.0 && delta <= remaining {
-            let advance = |x: &Vec3, v: &Vec3, a: &Vec3| {
+            let advance = |x: &Vec3, v: &Vec3, a: &Vec3, delta: Real| {
                 (x + v * delta + a * (0.5 * delta * delta), v + a * delta)
             };
-            let (xa, va) = advance(
-                &best.state.body_a.position,
-                &best.state.body_a.velocity,
-                &best.acceleration_a,
-            );
-            let (xb, vb) = advance(
-                &best.state.body_b.position,
-                &best.state.body_b.velocity,
-                &best.acceleration_b,
-            );
-            let acc = dynamics
-                .accelerations(&xa, &xb)
-                .unwrap_or((best.acceleration_a, best.acceleration_b));
-            best = dynamics.sample(best.time + delta, Phase([xa, xb, va, vb]), acc);
+            // Newton lands on the contact distance up to rounding, which may fall on either
+            // side: shorten δ by a few ulps until the state is not inside contact (a contact
+            // sample inside contact would make the model refuse its energy).
+            for shrink in 0..8 {
+                let delta = delta * (1.0 - 4.0 * Real::EPSILON * Real::from(shrink));
+                let (xa, va) = advance(
+                    &best.state.body_a.position,
+                    &best.state.body_a.velocity,
+                    &best.acceleration_a,
+                    delta,
+                );
+                let (xb, vb) = advance(
+                    &best.state.body_b.position,
+                    &best.state.body_b.velocity,
+                    &best.acceleration_b,
+                    delta,
+                );
+                if (xb - xa).norm() < d {
+                    continue;
+                }
+                let acc = dynamics
+                    .accelerations(&xa, &xb)
+                    .unwrap_or((best.acceleration_a, best.acceleration_b));
+                best = dynamics.sample(best.time + delta, Phase([xa, xb, va, vb]), acc);
+                break;
+            }
         }
     }
     let (xa, xb) = (&best.state.body_a.position, &best.state.body_b.position);

@@ -491,3 +491,32 @@ fn unbound_orbit_leaves_the_table_and_escapes() {
     assert_eq!(s.termination, Termination::Completed);
     assert!(rk4.set_escape_distance(Some(-1.0)).is_err());
 }
+
+/// The contact sample is never inside contact: Newton's closing step lands on the contact
+/// distance up to rounding, and a sample at 1.9999999999999998 (contact distance 2) made the
+/// model refuse its energy (a run of this scene exited with "energy: the bodies overlap").
+#[test]
+fn contact_sample_is_not_inside_contact() {
+    let heavy = Body::spheroid(Spheroid::new(1.0, 0.3, 2.0).unwrap()).unwrap();
+    let model = SceneModel::build(
+        spheroid(),
+        heavy,
+        &paper_2s_initial(),
+        &SceneSettings::default(),
+    )
+    .unwrap();
+    let summary = FixedStep::new(FixedScheme::RungeKutta4, 0.1)
+        .unwrap()
+        .integrate(&model, &paper_2s_initial(), 0.0, 20.0, &mut |_| {})
+        .unwrap();
+    let Termination::Contact(event) = summary.termination else {
+        panic!("no contact: {:?}", summary.termination);
+    };
+    assert!(event.separation >= event.contact_distance);
+    assert!(event.separation - event.contact_distance < 1e-12);
+    let (pa, pb) = (
+        event.sample.state.body_a.pose(),
+        event.sample.state.body_b.pose(),
+    );
+    assert!(model.potential_energy(&pa, &pb).is_ok());
+}
