@@ -364,15 +364,16 @@ fn interact_batch(path: &str) -> Result<String, UserError> {
             vector("orientation_b", config.orientation_b.unwrap_or_default())?,
         );
         for (key, spec) in [("a", &config.a), ("b", &config.b)] {
-            let id = (spec.clone(), g.to_bits());
-            if !bodies.contains_key(&id) {
+            if let std::collections::hash_map::Entry::Vacant(slot) =
+                bodies.entry((spec.clone(), g.to_bits()))
+            {
                 let body = spec
                     .parse::<BodySpec>()
                     .and_then(|s| s.build(g))
                     .map_err(|e| at(format!("{key}: {e}")))?
                     .into_interaction_body()
                     .map_err(|e| at(format!("{key}: {e}")))?;
-                bodies.insert(id, body);
+                slot.insert(body);
             }
         }
         let a = &bodies[&(config.a.clone(), g.to_bits())];
