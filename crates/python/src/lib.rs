@@ -7,7 +7,8 @@
 //! - simulations ([`simulation`]): `Simulation` (two bodies, an integrator by name,
 //!   `integrate(t_end, interval=None)` returning a `Trajectory` of arrays);
 //! - scenes ([`scene`]): `Scene.load`, `Scene.preset`, `Scene.parse`, run as `surfgrav run`
-//!   runs them (`SceneRun`: the CLI's summary and the trajectory's rows).
+//!   runs them (`SceneRun`: the CLI's summary and the trajectory's rows);
+//! - sweeps ([`sweep`]): the compiled half of `surfgrav.sweep` (plan, one task, results.csv).
 //!
 //! Conventions are the workspace's (README): Φ < 0, a = −∇Φ, V < 0, orientations body → world.
 //! Computation runs with the GIL released; errors are Python exceptions ([`errors`]), never a
@@ -21,6 +22,7 @@ mod errors;
 mod interaction;
 mod scene;
 mod simulation;
+mod sweep;
 
 /// The compiled part of the `surfgrav` package.
 #[pymodule]
@@ -43,6 +45,9 @@ fn _surfgrav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::SceneRun>()?;
     m.add_function(wrap_pyfunction!(interaction::interact, m)?)?;
     m.add_function(wrap_pyfunction!(interaction::interact_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::_sweep_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::_sweep_task, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::_sweep_csv, m)?)?;
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -1123,6 +1123,76 @@ fn task_folder(index: usize) -> String {
     format!("tasks/{index:05}")
 }
 
+/// A task's row of `results.csv` from its scene and finished run.
+fn task_result(scene: &Scene, record: &simulate::RunRecord) -> TaskResult {
+    let last = &record.summary.last.state;
+    TaskResult {
+        mass_a: scene.body_a.into_potential().mass(),
+        mass_b: scene.body_b.into_potential().mass(),
+        t_reached: record.t_reached(),
+        steps: record.summary.steps,
+        min_separation: record.orbit.minimum_separation,
+        energy_drift: record.energy.max_relative_drift,
+        angular_momentum_drift: record.angular_momentum.max_relative_drift,
+        angular_momentum_vector_drift: record.angular_momentum_vector_drift,
+        precession_angle_deg: record.orbit.precession_angle_deg,
+        final_spin_a: last.body_a.angular_velocity.norm(),
+        final_spin_b: last.body_b.angular_velocity.norm(),
+        termination: if record.contact().is_some() {
+            "contact"
+        } else if record.escape().is_some() {
+            "escape"
+        } else {
+            "completed"
+        }
+        .to_string(),
+        contact_time: record.contact(),
+        escape_time: record.escape(),
+        wall_seconds: record.wall_seconds,
+    }
+}
+
+/// Runs one task's scene as `surfgrav sweep` runs it, writing nothing (no folder, trajectory
+/// or figures): the task's key results, or the message its `failed` status would carry. For
+/// callers that distribute the tasks themselves (the Python package's `surfgrav.sweep`).
+///
+/// # Errors
+/// The run's message, as in `manifest.json`.
+pub fn run_scene(scene: &Scene) -> Result<TaskResult, String> {
+    let prepared = simulate::prepare(scene).map_err(|e| e.to_string())?;
+    let record = simulate::simulate(scene, &prepared, &mut |_| {}, &mut |_| Ok(()))
+        .map_err(|e| e.to_string())?;
+    Ok(task_result(scene, &record))
+}
+
+/// A task's row for [`results_csv_text`]: its index, parameters (as [`Task::parameters`]) and
+/// outcome ([`run_scene`]'s: the result, or the failure's message).
+pub type TaskOutcome = (usize, Vec<(String, Value)>, Result<TaskResult, String>);
+
+/// The text of `results.csv`, as `surfgrav sweep` writes it, for these tasks. Rows are sorted
+/// by index.
+pub fn results_csv_text(fields: &[String], rows: &[TaskOutcome]) -> String {
+    let mut tasks = Vec::with_capacity(rows.len());
+    let mut results = BTreeMap::new();
+    for (index, parameters, outcome) in rows {
+        let (status, message) = match outcome {
+            Ok(r) => {
+                results.insert(*index, r.clone());
+                (Status::Done, None)
+            }
+            Err(m) => (Status::Failed, Some(m.clone())),
+        };
+        tasks.push(ManifestTask {
+            task: *index,
+            folder: task_folder(*index),
+            parameters: parameters_json(parameters),
+            status,
+            message,
+        });
+    }
+    results_csv(fields, &tasks, &results)
+}
+
 /// Runs one task into `root/tasks/NNNNN` (staged).
 fn run_task(sweep: &Sweep, task: &Task, root: &Path) -> Result<TaskResult, String> {
     let scene = &task.scene;
@@ -1149,31 +1219,7 @@ fn run_task(sweep: &Sweep, task: &Task, root: &Path) -> Result<TaskResult, Strin
     if sweep.save_figures {
         crate::figures::write_all(&record, staging.path()).map_err(|e| format!("figures: {e}"))?;
     }
-    let last = &record.summary.last.state;
-    let result = TaskResult {
-        mass_a: scene.body_a.into_potential().mass(),
-        mass_b: scene.body_b.into_potential().mass(),
-        t_reached: record.t_reached(),
-        steps: record.summary.steps,
-        min_separation: record.orbit.minimum_separation,
-        energy_drift: record.energy.max_relative_drift,
-        angular_momentum_drift: record.angular_momentum.max_relative_drift,
-        angular_momentum_vector_drift: record.angular_momentum_vector_drift,
-        precession_angle_deg: record.orbit.precession_angle_deg,
-        final_spin_a: last.body_a.angular_velocity.norm(),
-        final_spin_b: last.body_b.angular_velocity.norm(),
-        termination: if record.contact().is_some() {
-            "contact"
-        } else if record.escape().is_some() {
-            "escape"
-        } else {
-            "completed"
-        }
-        .to_string(),
-        contact_time: record.contact(),
-        escape_time: record.escape(),
-        wall_seconds: record.wall_seconds,
-    };
+    let result = task_result(scene, &record);
     let file = TaskFile {
         task: task.index,
         parameters: task.parameters.iter().cloned().collect(),

@@ -1,7 +1,8 @@
 """Type stubs of the surfgrav package (the compiled module surfgrav._surfgrav)."""
 
 import os
-from typing import List, Optional, Sequence, Tuple, Union
+from concurrent.futures import Executor
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -290,3 +291,13 @@ class Scene:
     @property
     def bodies(self) -> Tuple[str, str]: ...
     def run(self) -> SceneRun: ...
+
+def sweep(
+    sweep_file: Union[str, os.PathLike[str]],
+    executor: Optional[Executor] = None,
+    out: Optional[Union[str, os.PathLike[str]]] = None,
+) -> List[Dict[str, Any]]:
+    """Runs a sweep file's tasks (expanded as `surfgrav sweep` does) through `executor.map`
+    (default: a local ThreadPoolExecutor; a Dask `Client.get_executor()` for a cluster); one
+    dict per task with results.csv's columns (task, status, the varied fields, mass_a, ...,
+    wall_seconds, message). With `out`, writes `out/results.csv` in the CLI's format."""
