@@ -7,6 +7,8 @@
 //! description = "two oblate spheroids"  # optional
 //! gravitational_constant = 1.0          # or units = "si" (G = 6.6743e-11); default G = 1
 //! t_end = 300.0                         # end time (t starts at t_start, default 0)
+//! # escape_distance = 700.0             # an unbound orbit beyond it stops the run (default
+//! #                                     # 100 initial separations; inf: never)
 //!
 //! [body_a]
 //! shape = "spheroid"        # point | sphere | spheroid | ellipsoid | disk
@@ -252,6 +254,10 @@ pub struct SceneFile {
     pub t_start: Option<Spanned<Real>>,
     /// End time.
     pub t_end: Spanned<Real>,
+    /// Separation beyond which an unbound relative orbit stops the run as an escape (default
+    /// 100 times the initial separation; `inf` never stops).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub escape_distance: Option<Spanned<Real>>,
     /// Body A.
     pub body_a: Spanned<BodyFile>,
     /// Body B.
@@ -349,6 +355,8 @@ pub struct Scene {
     pub t_start: Real,
     /// End time.
     pub t_end: Real,
+    /// An unbound orbit beyond this separation stops the run (`None`: never).
+    pub escape_distance: Option<Real>,
     /// The integrator.
     pub integrator: IntegratorChoice,
     /// Relative accuracy of the surface integrals.
@@ -360,6 +368,10 @@ pub struct Scene {
     /// Figures to draw.
     pub figures: Vec<FigureKind>,
 }
+
+/// The default escape distance, in initial separations: far enough that a bound orbit of a
+/// realistic eccentricity never reaches it, near enough that a flyby stops soon after.
+pub const DEFAULT_ESCAPE_FACTOR: Real = 100.0;
 
 /// Byte offset → 1-based line.
 fn line_of(source: &str, offset: usize) -> usize {
@@ -529,6 +541,26 @@ impl SceneFile {
                 "the centroids coincide: move body B away from body A",
             ));
         }
+        let escape_distance = match &self.escape_distance {
+            None => Some(DEFAULT_ESCAPE_FACTOR * initial.separation()),
+            Some(d) if *d.get_ref() == Real::INFINITY => None,
+            Some(d) if d.get_ref().is_finite() && *d.get_ref() > initial.separation() => {
+                Some(*d.get_ref())
+            }
+            Some(d) => {
+                return Err(loc.at(
+                    d,
+                    "escape_distance",
+                    format!(
+                    "must be larger than the initial separation {} (or inf: never stop), got {}",
+                    compact(initial.separation()),
+                    compact(*d.get_ref())
+                ),
+                ))
+            }
+        };
+        // Positions so large that 100 separations overflow are refused as out of range below.
+        let escape_distance = escape_distance.filter(|d| d.is_finite());
 
         check_in_range(&initial, &body_a, &body_b, g).map_err(|message| {
             loc.at(&self.body_b.get_ref().position, "body_b.position", message)
@@ -626,6 +658,7 @@ impl SceneFile {
             initial,
             t_start,
             t_end,
+            escape_distance,
             integrator,
             interaction_tolerance,
             tabulate: self.interaction.tabulate.unwrap_or(true),

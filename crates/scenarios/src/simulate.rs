@@ -434,6 +434,9 @@ pub fn simulate(
     let model = prepared.model();
     let plan = OutputPlan::of(scene);
     let mut integrator = scene.integrator.make().map_err(RunError::Input)?;
+    integrator
+        .set_escape_distance(scene.escape_distance)
+        .map_err(|e| RunError::Input(e.to_string()))?;
     let mut steps = StepRecorder {
         trackers: None,
         orbit: OrbitAnalyser::new(),

@@ -262,3 +262,44 @@ fn rotation_presets_run() {
     let a = &s["mutual_orbit"]["semi_major_axis"];
     assert!((a["min"].as_f64().unwrap() - 2548.0).abs() < 60.0, "{a}");
 }
+
+/// The flyby (paper-2s at v = ±2) used to die at t = 178 leaving its table; now the
+/// direct engine takes over and the run stops as an escape past 100 initial separations (or
+/// runs to its end with `escape_distance = inf`); an escape distance inside the start is bad
+/// input.
+#[test]
+fn an_unbound_flyby_stops_as_an_escape() {
+    let dir = scratch("flyby");
+    let shown = surfgrav(&dir, &["presets", "--show", "paper-2s"]);
+    let base = String::from_utf8(shown.stdout)
+        .unwrap()
+        .replace("velocity = [0.0, 0.2, 0.0]", "velocity = [0.0, 2.0, 0.0]")
+        .replace("velocity = [0.0, -0.2, 0.0]", "velocity = [0.0, -2.0, 0.0]");
+    let scene = write_scene(&dir, "flyby", &base);
+    let out = surfgrav(&dir, &["run", &scene, "--out", "flyby"]);
+    ok(&out);
+    let s = summary(&dir.join("flyby"));
+    let t = s["t_end"].as_f64().unwrap();
+    assert!(t > 150.0 && t < 300.0, "escape time {t}");
+    let printed = String::from_utf8_lossy(&out.stdout);
+    assert!(printed.contains("escaped each other"), "{printed}");
+    let (header, rows) = csv(&dir.join("flyby"));
+    let sep = header.iter().position(|h| h == "separation").unwrap();
+    assert!(rows.last().unwrap()[sep] > 700.0);
+    let never = write_scene(
+        &dir,
+        "never",
+        &base.replacen("t_end = 300.0", "t_end = 300.0\nescape_distance = inf", 1),
+    );
+    let out = surfgrav(&dir, &["run", &never, "--out", "never", "--quiet"]);
+    ok(&out);
+    assert_eq!(summary(&dir.join("never"))["t_end"], 300.0);
+    let inside = write_scene(
+        &dir,
+        "inside",
+        &base.replacen("t_end = 300.0", "t_end = 300.0\nescape_distance = 5.0", 1),
+    );
+    let out = surfgrav(&dir, &["run", &inside, "--out", "inside"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("escape_distance"));
+}
