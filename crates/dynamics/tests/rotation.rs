@@ -846,6 +846,9 @@ fn grazing_contact_of_rotating_spheroids_is_located() {
         println!("{scheme:?}: contact at {t} (DOP853 {reference})");
         // Measured 8e-5 apart: the fixed methods' own error at dt = 0.1 plus the last step's
         // O(h^3) kick-drift-kick, on a grazing approach where time is sensitive to position.
-        assert!((t - reference).abs() < 1e-3, "{scheme:?}: {t} vs {reference}");
+        assert!(
+            (t - reference).abs() < 1e-3,
+            "{scheme:?}: {t} vs {reference}"
+        );
     }
 }
