@@ -225,7 +225,7 @@ impl<'m> System<'m> {
     }
 
     /// The rigid state of a two-body state: body angular momenta $\mathsf I\,\mathsf Q^{-1}\boldsymbol\omega$.
-    fn rigid(&self, state: &TwoBodyState, time: Real) -> Result<Rigid, DynamicsError> {
+    fn rigid(&self, state: &TwoBodyState) -> Result<Rigid, DynamicsError> {
         let bodies = [&state.body_a, &state.body_b];
         let mut l = [Vec3::zeros(); 2];
         for (k, body) in bodies.iter().enumerate() {
@@ -251,7 +251,6 @@ impl<'m> System<'m> {
                 None => {}
             }
         }
-        let _ = time;
         Ok(Rigid {
             x: [state.body_a.position, state.body_b.position],
             v: [state.body_a.velocity, state.body_b.velocity],
@@ -318,7 +317,7 @@ impl<'m> System<'m> {
         if !state.is_finite() {
             return Err(DynamicsError::NonFinite { time });
         }
-        let rigid = self.rigid(state, time)?;
+        let rigid = self.rigid(state)?;
         let wrench = self
             .wrench(&rigid)
             .map_err(|source| DynamicsError::Interaction { time, source })?;

@@ -465,6 +465,48 @@ fn sphere_on_the_long_axis_stays_put_in_synchronous_orbit() {
     );
 }
 
+/// The libration scene: a sphere (R = 1, m = 1) and a triaxial ellipsoid (size × 0.7 × 0.5,
+/// m = 1e-3) on a circular orbit 10 apart, whose rate n comes from the engine's force on the
+/// aligned secondary (its quadrupole pulls a little harder than a point mass would); the
+/// ellipsoid spins at n with its long axis `amplitude` rad off the line of centres.
+/// Returns the model, the start, n and the small-body libration period 2π/(n_A√(3(B−A)/C)).
+fn libration_scene(size: Real, amplitude: Real) -> (EngineModel, TwoBodyState, Real, Real) {
+    let (a, b, c) = (size, 0.7 * size, 0.5 * size);
+    let (m_a, m_b, r): (Real, Real, Real) = (1.0, 1e-3, 10.0);
+    let model = engine(
+        Body::sphere(Sphere::new(1.0, m_a).unwrap()).unwrap(),
+        Body::ellipsoid(Ellipsoid::new(a, b, c, m_b).unwrap()).unwrap(),
+        1e-13,
+    );
+    let f = model
+        .force_on_a(
+            &Pose::identity(),
+            &Pose::new(Vec3::new(r, 0.0, 0.0), Vec3::zeros()),
+        )
+        .unwrap();
+    let n = (f.x * (1.0 / m_a + 1.0 / m_b) / r).sqrt();
+    let (xa, xb) = (-r * m_b / (m_a + m_b), r * m_a / (m_a + m_b));
+    let start = TwoBodyState::new(
+        body(
+            Vec3::new(xa, 0.0, 0.0),
+            Vec3::new(0.0, n * xa, 0.0),
+            Vec3::zeros(),
+            Vec3::zeros(),
+        ),
+        body(
+            Vec3::new(xb, 0.0, 0.0),
+            Vec3::new(0.0, n * xb, 0.0),
+            Vec3::new(0.0, 0.0, amplitude),
+            Vec3::new(0.0, 0.0, n),
+        ),
+    );
+    // The restoring torque is (3/2)(G m_A / r³)(B − A) sin 2φ: the classical n² is G m_A / r³,
+    // the secondary's own mass (here 1e-3 of the primary's) excluded.
+    let (ma, mb, mc) = (b * b + c * c, a * a + c * c, a * a + b * b);
+    let period = 2.0 * PI / ((m_a / r.powi(3)).sqrt() * (3.0 * (mb - ma) / mc).sqrt());
+    (model, start, n, period)
+}
+
 /// Small-amplitude libration of a triaxial secondary (semi-axes a > b > c) on a circular orbit
 /// about a sphere: the angle φ between its long axis and the line of centres oscillates at
 /// $\omega_\ell = n\sqrt{3(B - A)/C}$ in the limit of a small body far away (a/r → 0), with
@@ -473,44 +515,8 @@ fn sphere_on_the_long_axis_stays_put_in_synchronous_orbit() {
 fn libration_frequency_tends_to_the_classical_limit() {
     let mut deviations = Vec::new();
     for size in [0.4, 0.2, 0.1, 0.05] {
-        let (a, b, c) = (size, 0.7 * size, 0.5 * size);
-        let (m_a, m_b, r): (Real, Real, Real) = (1.0, 1e-3, 10.0);
-        let model = engine(
-            Body::sphere(Sphere::new(1.0, m_a).unwrap()).unwrap(),
-            Body::ellipsoid(Ellipsoid::new(a, b, c, m_b).unwrap()).unwrap(),
-            1e-13,
-        );
-        // The circular orbit's rate from the engine's force on the aligned secondary (its
-        // quadrupole pulls a little harder than a point mass would).
-        let f = model
-            .force_on_a(
-                &Pose::identity(),
-                &Pose::new(Vec3::new(r, 0.0, 0.0), Vec3::zeros()),
-            )
-            .unwrap();
-        let n = (f.x * (1.0 / m_a + 1.0 / m_b) / r).sqrt();
-        let (xa, xb) = (-r * m_b / (m_a + m_b), r * m_a / (m_a + m_b));
-        let amplitude = 0.003;
-        let start = TwoBodyState::new(
-            body(
-                Vec3::new(xa, 0.0, 0.0),
-                Vec3::new(0.0, n * xa, 0.0),
-                Vec3::zeros(),
-                Vec3::zeros(),
-            ),
-            body(
-                Vec3::new(xb, 0.0, 0.0),
-                Vec3::new(0.0, n * xb, 0.0),
-                Vec3::new(0.0, 0.0, amplitude),
-                Vec3::new(0.0, 0.0, n),
-            ),
-        );
-        let (ma, mb, mc) = (b * b + c * c, a * a + c * c, a * a + b * b);
-        // The restoring torque is (3/2)(G m_A / r³)(B − A) sin 2φ: the classical n² is G m_A / r³,
-        // the secondary's own mass (here 1e-3 of the primary's) excluded.
-        let n_primary = (m_a / r.powi(3)).sqrt();
-        let predicted = n_primary * (3.0 * (mb - ma) / mc).sqrt();
-        let libration_period = 2.0 * PI / predicted;
+        let (model, start, _, libration_period) = libration_scene(size, 0.003);
+        let predicted = 2.0 * PI / libration_period;
         let mut angles = Vec::new();
         Adaptive::dop853(1e-12, 1e-12)
             .unwrap()
@@ -545,7 +551,7 @@ fn libration_frequency_tends_to_the_classical_limit() {
         let deviation = (measured / predicted - 1.0).abs();
         println!(
             "a/r = {}: libration {measured:.6e} vs {predicted:.6e}: {deviation:.2e}",
-            a / r
+            size / 10.0
         );
         deviations.push(deviation);
     }
@@ -721,37 +727,8 @@ fn rotational_path_stops_for_escape() {
 /// 0, and the orbit's osculating elements stay circular and in the reference plane.
 #[test]
 fn spin_orbit_analyser_reports_libration_and_elements() {
-    let (a, b, c) = (0.1, 0.07, 0.05);
     let (m_a, m_b, r): (Real, Real, Real) = (1.0, 1e-3, 10.0);
-    let model = engine(
-        Body::sphere(Sphere::new(1.0, m_a).unwrap()).unwrap(),
-        Body::ellipsoid(Ellipsoid::new(a, b, c, m_b).unwrap()).unwrap(),
-        1e-13,
-    );
-    let f = model
-        .force_on_a(
-            &Pose::identity(),
-            &Pose::new(Vec3::new(r, 0.0, 0.0), Vec3::zeros()),
-        )
-        .unwrap();
-    let n = (f.x * (1.0 / m_a + 1.0 / m_b) / r).sqrt();
-    let (xa, xb) = (-r * m_b / (m_a + m_b), r * m_a / (m_a + m_b));
-    let start = TwoBodyState::new(
-        body(
-            Vec3::new(xa, 0.0, 0.0),
-            Vec3::new(0.0, n * xa, 0.0),
-            Vec3::zeros(),
-            Vec3::zeros(),
-        ),
-        body(
-            Vec3::new(xb, 0.0, 0.0),
-            Vec3::new(0.0, n * xb, 0.0),
-            Vec3::new(0.0, 0.0, 0.003),
-            Vec3::new(0.0, 0.0, n),
-        ),
-    );
-    let predicted =
-        2.0 * PI / ((m_a / r.powi(3)).sqrt() * (3.0 * (a * a - b * b) / (a * a + b * b)).sqrt());
+    let (model, start, n, predicted) = libration_scene(0.1, 0.003);
     let mut analyser = surfgrav_dynamics::SpinOrbitAnalyser::new(
         [model.inertia_a(), model.inertia_b()],
         m_a + m_b,

@@ -43,25 +43,9 @@ pub fn _sweep_plan(py: Python<'_>, path: PathBuf) -> PyResult<(Vec<String>, Py<P
     Ok((sweep.fields.clone(), tasks.unbind()))
 }
 
-/// The result columns of results.csv, in order, after task, status and the parameters.
-const COLUMNS: &[&str] = &[
-    "mass_a",
-    "mass_b",
-    "t_reached",
-    "steps",
-    "min_separation",
-    "energy_drift",
-    "angular_momentum_drift",
-    "angular_momentum_vector_drift",
-    "precession_angle_deg",
-    "final_spin_a",
-    "final_spin_b",
-    "termination",
-    "contact_time",
-    "escape_time",
-    "wall_seconds",
-    "message",
-];
+/// The result columns of results.csv, in order, after task, status and the parameters (the
+/// command line's own list).
+use surfgrav_scenarios::sweep::RESULT_COLUMNS as COLUMNS;
 
 /// Runs one task's scene (TOML text) as `surfgrav sweep` runs it; the GIL is released.
 /// Returns `{"task", "status", <result columns>}`: status `done`, or `failed` with `message`.

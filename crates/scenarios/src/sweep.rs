@@ -1333,7 +1333,7 @@ pub struct Manifest {
 }
 
 /// The result columns of `results.csv`, after `task`, `status` and the parameters.
-const RESULT_COLUMNS: &[&str] = &[
+pub const RESULT_COLUMNS: &[&str] = &[
     "mass_a",
     "mass_b",
     "t_reached",
