@@ -14,7 +14,7 @@ use common::{gauss_legendre, inverse_distance_flux, trapezoid, Vec3};
 use nalgebra::Rotation3;
 use std::hint::black_box;
 use std::time::Instant;
-use surfgrav_surfaces::{Ellipsoid, Surface, SurfaceNodes};
+use surfgrav_surfaces::{EllipsoidSurface, Surface, SurfaceNodes};
 
 const TARGET: f64 = 1e-12;
 /// Node count converged in either direction for every integrand below.
@@ -40,14 +40,14 @@ enum Form {
 }
 
 struct Case {
-    ellipsoid: Ellipsoid,
+    ellipsoid: EllipsoidSurface,
     form: Form,
     integrand: Integrand,
     reference: Vec3,
 }
 
 impl Case {
-    fn new(ellipsoid: Ellipsoid, form: Form, integrand: Integrand) -> Self {
+    fn new(ellipsoid: EllipsoidSurface, form: Form, integrand: Integrand) -> Self {
         let reference = match integrand {
             Integrand::InverseDistance(r0) => {
                 let fine = inverse_distance_flux(&ellipsoid.semi_axes(), &r0, 600);
@@ -129,15 +129,15 @@ fn main() {
     let shapes = [
         (
             "oblate a=b=1, c=0.25",
-            Ellipsoid::spheroid(1.0, 0.25).unwrap(),
+            EllipsoidSurface::spheroid(1.0, 0.25).unwrap(),
         ),
         (
             "triaxial 1, 0.6, 0.25",
-            Ellipsoid::new(1.0, 0.6, 0.25).unwrap(),
+            EllipsoidSurface::new(1.0, 0.6, 0.25).unwrap(),
         ),
         (
             "prolate a=b=0.25, c=1",
-            Ellipsoid::spheroid(0.25, 1.0).unwrap(),
+            EllipsoidSurface::spheroid(0.25, 1.0).unwrap(),
         ),
     ];
     let sweep = [4, 8, 12, 16, 20, 24, 32, 40, 48, 64, 96, 128];
@@ -218,7 +218,7 @@ fn main() {
         "{:>9} {:>9} {:>8} {:>14} {:>14} {:>14}",
         "periodic", "transv.", "nodes", "build AH [µs]", "build PA [µs]", "transform [µs]"
     );
-    let e = Ellipsoid::spheroid(1.0, 0.25).unwrap();
+    let e = EllipsoidSurface::spheroid(1.0, 0.25).unwrap();
     let ah = e.azimuth_height();
     let pa = e.polar_azimuth();
     let rotation = Rotation3::from_scaled_axis(Vec3::new(0.3, -0.2, 0.9));

@@ -14,7 +14,7 @@ use surfgrav_surfaces::interaction::{
     integrate_over_solid, Body, BodyShape, FrameMap, InteractionEngine, InteractionOptions,
     MethodChoice, SurfaceChoice,
 };
-use surfgrav_surfaces::{Ellipsoid, Interval, Rule1d, SurfaceNodes};
+use surfgrav_surfaces::{BorrowedRule, EllipsoidSurface, Interval, SurfaceNodes};
 
 /// Two point masses at ±`half_length` along the body x axis: a user's own potential.
 #[derive(Debug, Clone, Copy)]
@@ -139,13 +139,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // 3. The same pairing through the generic loop, monomorphised for `Dumbbell`, with a node
     //    table built once from rules of the quadrature crate.
-    let shape = Ellipsoid::new(1.0, 0.7, 0.4)?;
+    let shape = EllipsoidSurface::new(1.0, 0.7, 0.4)?;
     let azimuth = PeriodicTrapezoid::new(64, 0.0, 1.0)?;
     let height = GaussLegendre::new(40, -1.0, 1.0)?;
     let table = SurfaceNodes::with_periodic_rule(
         &shape.azimuth_height(),
-        Rule1d::new(azimuth.nodes(), azimuth.weights(), Interval::UNIT)?,
-        Rule1d::new(height.nodes(), height.weights(), Interval::SYMMETRIC_UNIT)?,
+        BorrowedRule::new(azimuth.nodes(), azimuth.weights(), Interval::UNIT)?,
+        BorrowedRule::new(height.nodes(), height.weights(), Interval::SYMMETRIC_UNIT)?,
     )?;
     let map = FrameMap::between(&pose_e, &pose_d)?;
     let integrals = integrate_over_solid(&table, 1.5 / shape.volume(), &dumbbell, &map);

@@ -29,7 +29,7 @@ use surfgrav_surfaces::interaction::{
     integrate_over_solid, rules::azimuth_rule, work_precision, Body, BodyShape, FrameMap,
     Interaction, InteractionEngine, InteractionError, InteractionOptions,
 };
-use surfgrav_surfaces::{Ellipsoid, Interval, Rule1d, SurfaceNodes};
+use surfgrav_surfaces::{BorrowedRule, EllipsoidSurface, Interval, SurfaceNodes};
 
 const SEPARATIONS: [f64; 5] = [2.1, 2.55, 3.0, 7.0, 30.0];
 
@@ -200,13 +200,13 @@ fn main() {
 
     // Dynamic dispatch: the same node loop over one table, monomorphised for `Spheroid` and
     // through `dyn Potential`.
-    let shape = Ellipsoid::spheroid(1.0, 0.25).unwrap();
+    let shape = EllipsoidSurface::spheroid(1.0, 0.25).unwrap();
     let (phi, w) = azimuth_rule(40, 0.8, false);
     let g = GaussLegendre::new(24, -0.25, 0.25).unwrap();
     let table = SurfaceNodes::with_periodic_rule(
         &shape.azimuth_height(),
-        Rule1d::new(&phi, &w, Interval::FULL_TURN).unwrap(),
-        Rule1d::new(g.nodes(), g.weights(), Interval::new(-0.25, 0.25).unwrap()).unwrap(),
+        BorrowedRule::new(&phi, &w, Interval::FULL_TURN).unwrap(),
+        BorrowedRule::new(g.nodes(), g.weights(), Interval::new(-0.25, 0.25).unwrap()).unwrap(),
     )
     .unwrap();
     let spheroid = Spheroid::new(1.0, 0.25, 1.0).unwrap();

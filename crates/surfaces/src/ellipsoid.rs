@@ -78,7 +78,7 @@ use std::f64::consts::PI;
 
 /// A homogeneous ellipsoid's shape: semi-axes along the body axes x, y, z. Units: length.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Ellipsoid {
+pub struct EllipsoidSurface {
     semi_axes: [Real; 3],
     volume: Real,
     surface_area: Real,
@@ -102,7 +102,7 @@ fn representable(what: &'static str, value: Real) -> Result<Real, ShapeError> {
     }
 }
 
-impl Ellipsoid {
+impl EllipsoidSurface {
     /// An ellipsoid with the given semi-axes along x, y and z (any order of sizes).
     ///
     /// Fails on a non-positive or non-finite semi-axis, or when a derived quantity (squares,
@@ -216,7 +216,7 @@ impl Ellipsoid {
 /// (periodic), $v = z \in [-c, c]$ (length). See the module docs for the formulas.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EllipsoidAzimuthHeight {
-    shape: Ellipsoid,
+    shape: EllipsoidSurface,
     a_over_c: Real,
     b_over_c: Real,
     ab_over_c2: Real,
@@ -224,7 +224,7 @@ pub struct EllipsoidAzimuthHeight {
 
 impl EllipsoidAzimuthHeight {
     /// The shape.
-    pub fn ellipsoid(&self) -> &Ellipsoid {
+    pub fn ellipsoid(&self) -> &EllipsoidSurface {
         &self.shape
     }
 
@@ -285,7 +285,7 @@ impl Surface for EllipsoidAzimuthHeight {
 /// (from the $+z$ pole), $v = \varphi \in [0, 2\pi]$ (periodic). See the module docs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EllipsoidPolarAzimuth {
-    shape: Ellipsoid,
+    shape: EllipsoidSurface,
     bc: Real,
     ac: Real,
     ab: Real,
@@ -293,7 +293,7 @@ pub struct EllipsoidPolarAzimuth {
 
 impl EllipsoidPolarAzimuth {
     /// The shape.
-    pub fn ellipsoid(&self) -> &Ellipsoid {
+    pub fn ellipsoid(&self) -> &EllipsoidSurface {
         &self.shape
     }
 }
@@ -354,45 +354,45 @@ mod tests {
     #[test]
     fn constructors_reject_bad_sizes() {
         assert_eq!(
-            Ellipsoid::new(1.0, -2.0, 1.0),
+            EllipsoidSurface::new(1.0, -2.0, 1.0),
             Err(ShapeError::NotPositive {
                 field: "y_semi_axis",
                 value: -2.0
             })
         );
         assert!(matches!(
-            Ellipsoid::spheroid(f64::NAN, 1.0),
+            EllipsoidSurface::spheroid(f64::NAN, 1.0),
             Err(ShapeError::NotFinite {
                 field: "equatorial_radius",
                 ..
             })
         ));
         assert!(matches!(
-            Ellipsoid::spheroid(1.0, 0.0),
+            EllipsoidSurface::spheroid(1.0, 0.0),
             Err(ShapeError::NotPositive {
                 field: "polar_radius",
                 ..
             })
         ));
         assert!(matches!(
-            Ellipsoid::sphere(f64::INFINITY),
+            EllipsoidSurface::sphere(f64::INFINITY),
             Err(ShapeError::NotFinite {
                 field: "radius",
                 ..
             })
         ));
         assert!(matches!(
-            Ellipsoid::new(1e200, 1.0, 1.0),
+            EllipsoidSurface::new(1e200, 1.0, 1.0),
             Err(ShapeError::OutOfRange { .. })
         ));
         assert!(matches!(
-            Ellipsoid::new(1e-200, 1.0, 1.0),
+            EllipsoidSurface::new(1e-200, 1.0, 1.0),
             Err(ShapeError::OutOfRange { .. })
         ));
         // A flat but representable shape is accepted, and its area exceeds the two faces 2πab by
         // less than the rim's c · perimeter (the excess is O(c² ln c)).
         let c = 1e-4;
-        let flat = Ellipsoid::new(2.0, 1.0, c).unwrap();
+        let flat = EllipsoidSurface::new(2.0, 1.0, c).unwrap();
         let faces = 2.0 * PI * 2.0;
         assert!(flat.surface_area() > faces);
         assert!(flat.surface_area() - faces < c * 2.0 * PI * 2.0);
@@ -400,7 +400,7 @@ mod tests {
 
     #[test]
     fn parameters_outside_the_rectangle_are_clamped() {
-        let e = Ellipsoid::new(1.0, 0.7, 0.4).unwrap();
+        let e = EllipsoidSurface::new(1.0, 0.7, 0.4).unwrap();
         let h = e.azimuth_height();
         let p = h.point(0.3, 0.9);
         assert!(p.iter().all(|x| x.is_finite()));

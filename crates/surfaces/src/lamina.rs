@@ -58,7 +58,7 @@
 
 use crate::nodes::check_transform;
 use crate::sum::{CompensatedSum, CompensatedSum3};
-use crate::{Interval, NodeTableError, Real, Rule1d, ShapeError, Vec3};
+use crate::{BorrowedRule, Interval, NodeTableError, Real, ShapeError, Vec3};
 use nalgebra::Rotation3;
 use std::f64::consts::PI;
 
@@ -109,9 +109,9 @@ impl Lamina {
     /// and $[0, R]$) for the area nodes, `rim_rule` (mapped onto $[0, 2\pi]$) for the rim.
     pub fn nodes(
         &self,
-        angle_rule: Rule1d<'_>,
-        radial_rule: Rule1d<'_>,
-        rim_rule: Rule1d<'_>,
+        angle_rule: BorrowedRule<'_>,
+        radial_rule: BorrowedRule<'_>,
+        rim_rule: BorrowedRule<'_>,
     ) -> Result<LaminaNodes, NodeTableError> {
         let (n_angle, n_radial) = (angle_rule.len(), radial_rule.len());
         let count = n_angle

@@ -6,10 +6,10 @@
 //! - [`Surface`]: a closed surface in its body frame, parametrised over a rectangle, giving the
 //!   point $\mathbf r(u, v)$ and the outward area vector $\partial_u\mathbf r\times\partial_v\mathbf r$
 //!   ([`surface`] module docs).
-//! - [`Ellipsoid`] (sphere and spheroid as special cases) in the founding paper's azimuth–height
+//! - [`EllipsoidSurface`] (sphere and spheroid as special cases) in the founding paper's azimuth–height
 //!   form [`EllipsoidAzimuthHeight`] and the smooth polar-angle form [`EllipsoidPolarAzimuth`]
 //!   ([`ellipsoid`] module docs, with the derivation of $\mathrm d\mathbf S$).
-//! - [`Rule1d`]: any 1-D quadrature rule (borrowed nodes and weights on a declared interval).
+//! - [`BorrowedRule`]: any 1-D quadrature rule (borrowed nodes and weights on a declared interval).
 //! - [`SurfaceNodes`]: the tensor-product table $(\mathbf r_k, \mathbf W_k)$ built once, moved into
 //!   another frame without allocation, with the force, torque and energy formulas the engine
 //!   applies ([`nodes`] module docs).
@@ -42,17 +42,17 @@
 //! 8-point trapezoid rule in azimuth and a 3-point Gauss–Legendre rule in height:
 //!
 //! ```
-//! use surfgrav_surfaces::{Ellipsoid, Interval, Rule1d, SurfaceNodes};
+//! use surfgrav_surfaces::{EllipsoidSurface, Interval, BorrowedRule, SurfaceNodes};
 //!
-//! let spheroid = Ellipsoid::spheroid(1.0, 0.25)?;
+//! let spheroid = EllipsoidSurface::spheroid(1.0, 0.25)?;
 //! let trapezoid_nodes: Vec<f64> = (0..8).map(|i| i as f64 / 8.0).collect();
 //! let trapezoid_weights = vec![1.0 / 8.0; 8];
 //! let x = (0.6f64).sqrt();
 //! let gauss_nodes = [-x, 0.0, x];
 //! let gauss_weights = [5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0];
 //!
-//! let azimuth = Rule1d::new(&trapezoid_nodes, &trapezoid_weights, Interval::UNIT)?;
-//! let height = Rule1d::new(&gauss_nodes, &gauss_weights, Interval::SYMMETRIC_UNIT)?;
+//! let azimuth = BorrowedRule::new(&trapezoid_nodes, &trapezoid_weights, Interval::UNIT)?;
+//! let height = BorrowedRule::new(&gauss_nodes, &gauss_weights, Interval::SYMMETRIC_UNIT)?;
 //! let table = SurfaceNodes::with_periodic_rule(&spheroid.azimuth_height(), azimuth, height)?;
 //!
 //! assert_eq!(table.len(), 24);
@@ -73,12 +73,12 @@ pub mod rule;
 pub mod sum;
 pub mod surface;
 
-pub use ellipsoid::{Ellipsoid, EllipsoidAzimuthHeight, EllipsoidPolarAzimuth};
+pub use ellipsoid::{EllipsoidAzimuthHeight, EllipsoidPolarAzimuth, EllipsoidSurface};
 pub use error::{NodeTableError, ShapeError};
 pub use lamina::{Lamina, LaminaNodes};
 pub use mesh::{TriangleMesh, TriangleRule};
 pub use nodes::SurfaceNodes;
-pub use rule::Rule1d;
+pub use rule::BorrowedRule;
 pub use sum::{CompensatedSum, CompensatedSum3};
 pub use surface::{Interval, ParameterDomain, Periodicity, Surface};
 

@@ -43,7 +43,7 @@
 //! time step allocates nothing.
 
 use crate::sum::{CompensatedSum, CompensatedSum3};
-use crate::{NodeTableError, Periodicity, Real, Rule1d, Surface, Vec3};
+use crate::{BorrowedRule, NodeTableError, Periodicity, Real, Surface, Vec3};
 use nalgebra::Rotation3;
 
 /// A surface's node table: points $\mathbf r_k$ and weighted outward area vectors $\mathbf W_k$
@@ -65,8 +65,8 @@ impl SurfaceNodes {
     /// (origin at the centroid).
     pub fn new<S: Surface + ?Sized>(
         surface: &S,
-        u_rule: Rule1d<'_>,
-        v_rule: Rule1d<'_>,
+        u_rule: BorrowedRule<'_>,
+        v_rule: BorrowedRule<'_>,
     ) -> Result<Self, NodeTableError> {
         let (n_u, n_v) = (u_rule.len(), v_rule.len());
         let count = n_u
@@ -101,8 +101,8 @@ impl SurfaceNodes {
     /// other. Fails unless exactly one direction is periodic.
     pub fn with_periodic_rule<S: Surface + ?Sized>(
         surface: &S,
-        periodic_rule: Rule1d<'_>,
-        transverse_rule: Rule1d<'_>,
+        periodic_rule: BorrowedRule<'_>,
+        transverse_rule: BorrowedRule<'_>,
     ) -> Result<Self, NodeTableError> {
         match surface.parameter_domain().periodicity {
             Periodicity::U => Self::new(surface, periodic_rule, transverse_rule),

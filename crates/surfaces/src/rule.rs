@@ -1,6 +1,6 @@
 //! One-dimensional quadrature rules, borrowed from whoever built them.
 //!
-//! A [`Rule1d`] is a view of nodes $x_i$ and weights $w_i$ that integrate on a declared interval
+//! A [`BorrowedRule`] is a view of nodes $x_i$ and weights $w_i$ that integrate on a declared interval
 //! $[p, q]$: $\int_p^q f(x)\,\mathrm dx \approx \sum_i w_i f(x_i)$. The node-table builders map it
 //! affinely onto the parameter interval $[t_0, t_1]$ they need,
 //!
@@ -19,13 +19,13 @@ use crate::{Interval, NodeTableError, Real};
 /// A borrowed 1-D quadrature rule with the interval it integrates over. Validated on creation:
 /// at least one node, one weight per node, everything finite, every node inside the interval.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Rule1d<'a> {
+pub struct BorrowedRule<'a> {
     nodes: &'a [Real],
     weights: &'a [Real],
     interval: Interval,
 }
 
-impl<'a> Rule1d<'a> {
+impl<'a> BorrowedRule<'a> {
     /// A rule integrating over `interval` with the given nodes and weights.
     pub fn new(
         nodes: &'a [Real],
@@ -72,12 +72,12 @@ impl<'a> Rule1d<'a> {
         })
     }
 
-    /// The nodes, on [`Rule1d::interval`].
+    /// The nodes, on [`BorrowedRule::interval`].
     pub fn nodes(&self) -> &'a [Real] {
         self.nodes
     }
 
-    /// The weights, for [`Rule1d::interval`].
+    /// The weights, for [`BorrowedRule::interval`].
     pub fn weights(&self) -> &'a [Real] {
         self.weights
     }
@@ -119,16 +119,19 @@ mod tests {
     #[test]
     fn rejects_malformed_rules() {
         let i = Interval::UNIT;
-        assert_eq!(Rule1d::new(&[], &[], i), Err(NodeTableError::EmptyRule));
         assert_eq!(
-            Rule1d::new(&[0.5], &[0.5, 0.5], i),
+            BorrowedRule::new(&[], &[], i),
+            Err(NodeTableError::EmptyRule)
+        );
+        assert_eq!(
+            BorrowedRule::new(&[0.5], &[0.5, 0.5], i),
             Err(NodeTableError::LengthMismatch {
                 nodes: 1,
                 weights: 2
             })
         );
         assert!(matches!(
-            Rule1d::new(&[0.5, f64::NAN], &[0.5, 0.5], i),
+            BorrowedRule::new(&[0.5, f64::NAN], &[0.5, 0.5], i),
             Err(NodeTableError::NotFinite {
                 what: "node",
                 index: 1,
@@ -136,7 +139,7 @@ mod tests {
             })
         ));
         assert!(matches!(
-            Rule1d::new(&[0.5], &[f64::INFINITY], i),
+            BorrowedRule::new(&[0.5], &[f64::INFINITY], i),
             Err(NodeTableError::NotFinite {
                 what: "weight",
                 index: 0,
@@ -144,7 +147,7 @@ mod tests {
             })
         ));
         assert!(matches!(
-            Rule1d::new(&[0.5, 1.5], &[0.5, 0.5], i),
+            BorrowedRule::new(&[0.5, 1.5], &[0.5, 0.5], i),
             Err(NodeTableError::NodeOutsideInterval { index: 1, .. })
         ));
     }
@@ -171,7 +174,7 @@ mod tests {
         let x = 1.0 / 3.0_f64.sqrt();
         let nodes = [-x, x];
         let weights = [1.0, 1.0];
-        let rule = Rule1d::new(&nodes, &weights, Interval::SYMMETRIC_UNIT).unwrap();
+        let rule = BorrowedRule::new(&nodes, &weights, Interval::SYMMETRIC_UNIT).unwrap();
         let target = Interval::new(2.0, 5.0).unwrap();
         let integral: f64 = rule.mapped_to(target).map(|(t, w)| w * t.powi(3)).sum();
         assert!(

@@ -6,7 +6,7 @@ mod common;
 
 use common::tolerance::ACCELERATION_REL;
 use common::{gauss_legendre, inverse_distance_flux, rel_vec, trapezoid, Vec3};
-use surfgrav_surfaces::{Ellipsoid, Surface, SurfaceNodes};
+use surfgrav_surfaces::{EllipsoidSurface, Surface, SurfaceNodes};
 
 /// Converged count in the direction not being studied (the sweeps of the example converge by 48).
 const CONVERGED: usize = 128;
@@ -49,7 +49,7 @@ fn minimal(surface: &dyn Surface, r0: Option<Vec3>, reference: &Vec3, periodic: 
 #[test]
 fn node_counts_for_the_paper_shape_snapshot() {
     // Oblate spheroid a = 1, c = 0.25; source on the equator at 2.1 and 7 radii; the area.
-    let e = Ellipsoid::spheroid(1.0, 0.25).unwrap();
+    let e = EllipsoidSurface::spheroid(1.0, 0.25).unwrap();
     let (height, polar) = (e.azimuth_height(), e.polar_azimuth());
     let mut found = Vec::new();
     for d in [2.1, 7.0] {

@@ -7,7 +7,7 @@ use common::tolerance::{FINITE_DIFFERENCE_REL, POTENTIAL_REL};
 use common::{gauss_legendre, rel, trapezoid, SplitMix, Vec3};
 use std::f64::consts::PI;
 use surfgrav_surfaces::{
-    Ellipsoid, Interval, NodeTableError, ParameterDomain, Periodicity, Surface, SurfaceNodes,
+    EllipsoidSurface, Interval, NodeTableError, ParameterDomain, Periodicity, Surface, SurfaceNodes,
 };
 
 /// A torus (major radius `major`, tube radius `minor`): a closed surface periodic in both
@@ -46,12 +46,12 @@ impl Surface for Torus {
 }
 
 /// The two parametrisations of an ellipsoid, as trait objects.
-fn both_forms(e: &Ellipsoid) -> [Box<dyn Surface>; 2] {
+fn both_forms(e: &EllipsoidSurface) -> [Box<dyn Surface>; 2] {
     [Box::new(e.azimuth_height()), Box::new(e.polar_azimuth())]
 }
 
-fn random_ellipsoid(rng: &mut SplitMix) -> Ellipsoid {
-    Ellipsoid::new(
+fn random_ellipsoid(rng: &mut SplitMix) -> EllipsoidSurface {
+    EllipsoidSurface::new(
         rng.uniform(0.1, 3.0),
         rng.uniform(0.1, 3.0),
         rng.uniform(0.1, 3.0),
@@ -197,7 +197,7 @@ fn surface_areas_match_closed_forms() {
         shapes.push((rng.uniform(0.05, 4.0), rng.uniform(0.05, 4.0)));
     }
     for &(a, c) in &shapes {
-        let e = Ellipsoid::spheroid(a, c).unwrap();
+        let e = EllipsoidSurface::spheroid(a, c).unwrap();
         let exact = spheroid_area(a, c);
         assert!(
             rel(e.surface_area(), exact) < POTENTIAL_REL,
@@ -205,7 +205,7 @@ fn surface_areas_match_closed_forms() {
             e.surface_area()
         );
     }
-    let sphere = Ellipsoid::sphere(2.5).unwrap();
+    let sphere = EllipsoidSurface::sphere(2.5).unwrap();
     assert!(rel(sphere.surface_area(), 25.0 * PI) < POTENTIAL_REL);
     // Node tables (Σ |W_k|) against the closed forms: spheres, spheroids, and triaxial shapes
     // against R_G. Rules large enough for the flattest shape drawn (c/a ≥ 1/4).
@@ -218,7 +218,7 @@ fn surface_areas_match_closed_forms() {
         ));
     }
     for (a, b, c) in triaxial {
-        let e = Ellipsoid::new(a, b, c).unwrap();
+        let e = EllipsoidSurface::new(a, b, c).unwrap();
         for surface in both_forms(&e) {
             let area = table(&*surface, 96, 96).area();
             assert_eq!(surface.surface_area(), Some(e.surface_area()));
@@ -233,7 +233,7 @@ fn surface_areas_match_closed_forms() {
 
 #[test]
 fn domains_periodicity_and_rule_roles() {
-    let e = Ellipsoid::new(1.5, 1.0, 0.5).unwrap();
+    let e = EllipsoidSurface::new(1.5, 1.0, 0.5).unwrap();
     let h = e.azimuth_height();
     let p = e.polar_azimuth();
     assert_eq!(h.parameter_domain().periodicity, Periodicity::U);

@@ -10,7 +10,7 @@ use common::{
     rel_vec, trapezoid, volume_integral, SplitMix, Vec3,
 };
 use std::f64::consts::PI;
-use surfgrav_surfaces::{Ellipsoid, Surface, SurfaceNodes};
+use surfgrav_surfaces::{EllipsoidSurface, Surface, SurfaceNodes};
 
 /// Rules that reach ACCELERATION_REL for sources at ≥ 2.1 bounding radii (see the convergence
 /// example: 36 × 12 nodes reach 1e-12 for the azimuth–height form, 36 × 20 for the polar form).
@@ -18,7 +18,7 @@ const PERIODIC: usize = 64;
 const HEIGHT: usize = 24;
 const POLAR: usize = 40;
 
-fn tables(e: &Ellipsoid) -> [SurfaceNodes; 2] {
+fn tables(e: &EllipsoidSurface) -> [SurfaceNodes; 2] {
     let p = trapezoid(PERIODIC);
     let (h, t) = (gauss_legendre(HEIGHT), gauss_legendre(POLAR));
     [
@@ -27,8 +27,8 @@ fn tables(e: &Ellipsoid) -> [SurfaceNodes; 2] {
     ]
 }
 
-fn random_ellipsoid(rng: &mut SplitMix) -> Ellipsoid {
-    Ellipsoid::new(
+fn random_ellipsoid(rng: &mut SplitMix) -> EllipsoidSurface {
+    EllipsoidSurface::new(
         rng.uniform(0.3, 1.5),
         rng.uniform(0.3, 1.5),
         rng.uniform(0.3, 1.5),
@@ -37,7 +37,7 @@ fn random_ellipsoid(rng: &mut SplitMix) -> Ellipsoid {
 }
 
 /// A random exterior point at 2.1 to 8 bounding radii.
-fn random_source(rng: &mut SplitMix, e: &Ellipsoid) -> Vec3 {
+fn random_source(rng: &mut SplitMix, e: &EllipsoidSurface) -> Vec3 {
     rng.unit_vector() * (e.bounding_radius() * rng.uniform(2.1, 8.0))
 }
 
@@ -85,7 +85,7 @@ fn flux_of_inverse_distance_matches_the_exterior_attraction() {
 fn force_of_a_point_mass_on_a_sphere_is_newtonian() {
     // F = −ρ ∮ Φ dS with Φ = −μ/|r − p|; exact F = M μ p/|p|³ (toward the point mass).
     let (radius, density, mu) = (0.8, 2.5, 3.0);
-    let sphere = Ellipsoid::sphere(radius).unwrap();
+    let sphere = EllipsoidSurface::sphere(radius).unwrap();
     let mass = density * sphere.volume();
     let mut rng = SplitMix(23);
     for d in [2.1, 3.0, 7.0] {

@@ -9,15 +9,18 @@ use surfgrav_potentials::{Ellipsoid as SolidEllipsoid, Pose, Potential, Spheroid
 use surfgrav_surfaces::interaction::{
     interact, Body, BodyShape, InteractionError, MethodChoice, SurfaceChoice,
 };
-use surfgrav_surfaces::{Ellipsoid, Surface};
+use surfgrav_surfaces::{EllipsoidSurface, Surface};
 
 /// A custom body (a built-in potential seen through `dyn Potential`, with a generic
 /// `dyn Surface`) gives the built-in body's interaction, integrated over either body.
 #[test]
 fn custom_potentials_and_surfaces_match_the_built_in_bodies() {
     let field = Spheroid::new(0.9, 0.4, 1.2).unwrap();
-    let surface: Arc<dyn Surface> =
-        Arc::new(Ellipsoid::spheroid(0.9, 0.4).unwrap().polar_azimuth());
+    let surface: Arc<dyn Surface> = Arc::new(
+        EllipsoidSurface::spheroid(0.9, 0.4)
+            .unwrap()
+            .polar_azimuth(),
+    );
     let custom = Body::custom(Arc::new(field), BodyShape::Surface(surface)).unwrap();
     let builtin = Body::spheroid(field).unwrap();
     assert!((custom.density() - builtin.density()).abs() <= 1e-12 * builtin.density());
@@ -56,7 +59,7 @@ fn a_scene_of_mixed_bodies_conserves_momentum() {
         (
             Body::custom(
                 user,
-                BodyShape::Solid(Ellipsoid::new(0.7, 0.5, 0.4).unwrap()),
+                BodyShape::Solid(EllipsoidSurface::new(0.7, 0.5, 0.4).unwrap()),
             )
             .unwrap(),
             pose([0.2, 2.6, -0.5], [0.0, 0.4, 0.9]),

@@ -13,7 +13,7 @@ use surfgrav_surfaces::interaction::{
     integrate_over_solid, rules::azimuth_rule, Body, FrameMap, InteractionError,
     InteractionOptions, MethodChoice, SurfaceChoice,
 };
-use surfgrav_surfaces::{Ellipsoid, Interval, Rule1d, SurfaceNodes};
+use surfgrav_surfaces::{BorrowedRule, EllipsoidSurface, Interval, SurfaceNodes};
 
 /// The engine's default tolerance: what every identity below is held to (through each
 /// result's own error estimate, which must not exceed it).
@@ -41,12 +41,12 @@ impl Kind {
         }
     }
 
-    fn solid(&self) -> Option<Ellipsoid> {
+    fn solid(&self) -> Option<EllipsoidSurface> {
         match *self {
             Kind::Spheroid { equatorial, polar } => {
-                Some(Ellipsoid::spheroid(equatorial, polar).unwrap())
+                Some(EllipsoidSurface::spheroid(equatorial, polar).unwrap())
             }
-            Kind::Triaxial { a, b, c } => Some(Ellipsoid::new(a, b, c).unwrap()),
+            Kind::Triaxial { a, b, c } => Some(EllipsoidSurface::new(a, b, c).unwrap()),
             Kind::Disk { .. } => None,
         }
     }
@@ -260,8 +260,8 @@ proptest! {
         let g = GaussLegendre::new(60, -c, c).unwrap();
         let table = SurfaceNodes::with_periodic_rule(
             &shape.azimuth_height(),
-            Rule1d::new(&phi, &w, Interval::FULL_TURN).unwrap(),
-            Rule1d::new(g.nodes(), g.weights(), Interval::new(-c, c).unwrap()).unwrap(),
+            BorrowedRule::new(&phi, &w, Interval::FULL_TURN).unwrap(),
+            BorrowedRule::new(g.nodes(), g.weights(), Interval::new(-c, c).unwrap()).unwrap(),
         ).unwrap();
         let map = FrameMap::between(&p.pose_a, &p.pose_b).unwrap();
         let density = p.mass_a / shape.volume();

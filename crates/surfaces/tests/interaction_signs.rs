@@ -9,11 +9,11 @@ use surfgrav_potentials::{
     Ellipsoid as SolidEllipsoid, PointMass, Pose, Potential, Sphere, Spheroid, UniformDisk, Vec3,
 };
 use surfgrav_surfaces::interaction::{Body, Method, MethodChoice, Side, SurfaceChoice};
-use surfgrav_surfaces::Ellipsoid;
+use surfgrav_surfaces::EllipsoidSurface;
 
 struct Case {
     label: &'static str,
-    shape_a: Ellipsoid,
+    shape_a: EllipsoidSurface,
     body_a: Body,
     body_b: Body,
     source_b: Box<dyn Potential>,
@@ -28,7 +28,7 @@ fn cases() -> Vec<Case> {
     vec![
         Case {
             label: "tilted oblate pair",
-            shape_a: Ellipsoid::spheroid(1.0, 0.25).unwrap(),
+            shape_a: EllipsoidSurface::spheroid(1.0, 0.25).unwrap(),
             body_a: paper_spheroid(),
             body_b: Body::spheroid(spheroid_b).unwrap(),
             source_b: Box::new(spheroid_b),
@@ -37,7 +37,7 @@ fn cases() -> Vec<Case> {
         },
         Case {
             label: "triaxial pair",
-            shape_a: Ellipsoid::new(0.8, 0.5, 0.3).unwrap(),
+            shape_a: EllipsoidSurface::new(0.8, 0.5, 0.3).unwrap(),
             body_a: Body::ellipsoid(SolidEllipsoid::new(0.8, 0.5, 0.3, 1.1).unwrap()).unwrap(),
             body_b: Body::ellipsoid(triaxial_b).unwrap(),
             source_b: Box::new(triaxial_b),
@@ -46,7 +46,7 @@ fn cases() -> Vec<Case> {
         },
         Case {
             label: "prolate A beside a tilted disk",
-            shape_a: Ellipsoid::spheroid(0.4, 0.9).unwrap(),
+            shape_a: EllipsoidSurface::spheroid(0.4, 0.9).unwrap(),
             body_a: Body::spheroid(Spheroid::new(0.4, 0.9, 0.6).unwrap()).unwrap(),
             body_b: Body::disk(disk_b).unwrap(),
             source_b: Box::new(disk_b),

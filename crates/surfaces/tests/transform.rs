@@ -6,14 +6,14 @@ use common::tolerance::{ACCELERATION_REL, POTENTIAL_REL};
 use common::{gauss_legendre, inverse_distance_flux, rel, rel_vec, trapezoid, SplitMix, Vec3};
 use nalgebra::Rotation3;
 use std::f64::consts::FRAC_PI_2;
-use surfgrav_surfaces::{Ellipsoid, NodeTableError, SurfaceNodes};
+use surfgrav_surfaces::{EllipsoidSurface, NodeTableError, SurfaceNodes};
 
-fn height_table(e: &Ellipsoid) -> SurfaceNodes {
+fn height_table(e: &EllipsoidSurface) -> SurfaceNodes {
     let (p, h) = (trapezoid(64), gauss_legendre(24));
     SurfaceNodes::with_periodic_rule(&e.azimuth_height(), p.rule(), h.rule()).unwrap()
 }
 
-fn polar_table(e: &Ellipsoid) -> SurfaceNodes {
+fn polar_table(e: &EllipsoidSurface) -> SurfaceNodes {
     let (p, t) = (trapezoid(64), gauss_legendre(40));
     SurfaceNodes::with_periodic_rule(&e.polar_azimuth(), p.rule(), t.rule()).unwrap()
 }
@@ -27,17 +27,17 @@ fn rotated_table_integrates_like_the_rotated_shape_built_directly() {
     // different nodes on the same surface, so their integrals agree only if the points and the
     // area vectors were both moved correctly.
     let (a, b, c) = (1.3, 0.8, 0.45);
-    let e = Ellipsoid::new(a, b, c).unwrap();
+    let e = EllipsoidSurface::new(a, b, c).unwrap();
     let cases = [
         (
             Rotation3::from_axis_angle(&Vec3::x_axis(), FRAC_PI_2),
-            Ellipsoid::new(a, c, b).unwrap(),
+            EllipsoidSurface::new(a, c, b).unwrap(),
         ),
         (
             Rotation3::from_scaled_axis(
                 Vec3::new(1.0, 1.0, 1.0).normalize() * (2.0 * std::f64::consts::PI / 3.0),
             ),
-            Ellipsoid::new(c, a, b).unwrap(),
+            EllipsoidSurface::new(c, a, b).unwrap(),
         ),
     ];
     let offset = Vec3::new(0.4, -2.0, 1.1);
@@ -75,7 +75,7 @@ fn random_rotation_reproduces_the_exact_flux_in_the_new_frame() {
     // In the new frame the source sits at R r0 + t and the flux is R times the body-frame one.
     let mut rng = SplitMix(32);
     for _ in 0..20 {
-        let e = Ellipsoid::new(
+        let e = EllipsoidSurface::new(
             rng.uniform(0.3, 1.5),
             rng.uniform(0.3, 1.5),
             rng.uniform(0.3, 1.5),
@@ -100,7 +100,7 @@ fn random_rotation_reproduces_the_exact_flux_in_the_new_frame() {
 #[test]
 fn node_by_node_transformation_composition_and_buffer_reuse() {
     let mut rng = SplitMix(33);
-    let e = Ellipsoid::new(1.0, 0.6, 0.3).unwrap();
+    let e = EllipsoidSurface::new(1.0, 0.6, 0.3).unwrap();
     let table = height_table(&e);
     let (r1, t1) = (rng.rotation(), Vec3::new(1.0, 2.0, 3.0));
     let (r2, t2) = (rng.rotation(), Vec3::new(-0.5, 0.1, 4.0));

@@ -55,7 +55,7 @@
 use super::body::{Body, BodyShape};
 use super::kernel::{add_solid_node, FrameMap, NodeConstants, SolidBlock, SolidSums, BLOCK};
 use crate::sum::{CompensatedSum, CompensatedSum3};
-use crate::{Ellipsoid, Real, Vec3};
+use crate::{EllipsoidSurface, Real, Vec3};
 use nalgebra::Matrix3;
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
@@ -332,7 +332,7 @@ fn nearest_on_ellipsoid(axes: &Vec3, q: &Vec3) -> Vec3 {
 }
 
 /// The aim for integrating over the ellipsoid `e` (integration frame) in Y's field.
-pub(crate) fn aim(e: &Ellipsoid, y: &Body, map: &FrameMap, tolerance: Real) -> Aim {
+pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Real) -> Aim {
     let axes = e.semi_axes();
     let set = singular_set(y);
     let to_y = |r: &Vec3| map.apply(r);
@@ -415,7 +415,7 @@ pub(crate) fn aim(e: &Ellipsoid, y: &Body, map: &FrameMap, tolerance: Real) -> A
 /// the tables' loop: [`add_solid_node`]); `FULL`: torques and energy too, otherwise the force.
 #[inline(never)]
 pub(crate) fn aimed_sums<P: Potential + ?Sized, const FAR: bool, const FULL: bool>(
-    e: &Ellipsoid,
+    e: &EllipsoidSurface,
     grid: &SphereGrid,
     aim: &Aim,
     source: &P,

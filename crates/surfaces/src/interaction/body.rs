@@ -4,7 +4,7 @@
 
 use super::error::InteractionError;
 use super::rules::{build_table, NodeTable, TableKey};
-use crate::{Ellipsoid, Lamina, Real, Surface, TriangleMesh, Vec3};
+use crate::{EllipsoidSurface, Lamina, Real, Surface, TriangleMesh, Vec3};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use surfgrav_potentials as potentials;
@@ -23,7 +23,7 @@ pub enum BodyShape {
     /// point formula is used).
     Point,
     /// A homogeneous solid ellipsoid (sphere and spheroid included).
-    Solid(Ellipsoid),
+    Solid(EllipsoidSurface),
     /// A uniform disk in the body's x–y plane, integrated as a lamina.
     Disk(Lamina),
     /// The closed surface of a homogeneous solid of any shape, parametrised over a rectangle
@@ -195,13 +195,13 @@ impl Body {
 
     /// A homogeneous sphere.
     pub fn sphere(body: Sphere) -> Result<Self, InteractionError> {
-        let shape = BodyShape::Solid(Ellipsoid::sphere(body.radius())?);
+        let shape = BodyShape::Solid(EllipsoidSurface::sphere(body.radius())?);
         Self::assemble(SourceField::Sphere(body), shape, FieldSymmetry::Spherical)
     }
 
     /// A homogeneous spheroid (symmetry axis z).
     pub fn spheroid(body: Spheroid) -> Result<Self, InteractionError> {
-        let shape = BodyShape::Solid(Ellipsoid::spheroid(
+        let shape = BodyShape::Solid(EllipsoidSurface::spheroid(
             body.equatorial_radius(),
             body.polar_radius(),
         )?);
@@ -211,7 +211,7 @@ impl Body {
     /// A homogeneous triaxial ellipsoid (semi-axes along x, y, z).
     pub fn ellipsoid(body: potentials::Ellipsoid) -> Result<Self, InteractionError> {
         let [a, b, c] = body.semi_axes();
-        let shape = BodyShape::Solid(Ellipsoid::new(a, b, c)?);
+        let shape = BodyShape::Solid(EllipsoidSurface::new(a, b, c)?);
         let symmetry = if a == b && b == c {
             FieldSymmetry::Spherical
         } else if a == b {

@@ -800,7 +800,7 @@ impl InteractionEngine {
     /// The ladder of the aimed rule ([`super::aimed`]) over the ellipsoid `e` (X's surface).
     fn aimed_ladder(
         &mut self,
-        e: &crate::Ellipsoid,
+        e: &crate::EllipsoidSurface,
         aim: &aimed::Aim,
         x: &Body,
         y: &Body,

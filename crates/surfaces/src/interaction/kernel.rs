@@ -494,16 +494,16 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized, const FAR: bool, const FUL
 /// use surfgrav_potentials::{PointMass, Potential};
 /// use surfgrav_quadrature::{GaussLegendre, PeriodicTrapezoid, Rule1D};
 /// use surfgrav_surfaces::interaction::{integrate_over_solid, FrameMap};
-/// use surfgrav_surfaces::{Ellipsoid, Interval, Rule1d, SurfaceNodes, Vec3};
+/// use surfgrav_surfaces::{EllipsoidSurface, Interval, BorrowedRule, SurfaceNodes, Vec3};
 ///
 /// // A unit sphere of mass 1 and a point mass 1 at distance 3: F = 1/9 toward it, V = −1/3.
-/// let sphere = Ellipsoid::sphere(1.0)?;
+/// let sphere = EllipsoidSurface::sphere(1.0)?;
 /// let azimuth = PeriodicTrapezoid::new(32, 0.0, 1.0)?;
 /// let height = GaussLegendre::new(20, -1.0, 1.0)?;
 /// let table = SurfaceNodes::with_periodic_rule(
 ///     &sphere.azimuth_height(),
-///     Rule1d::new(azimuth.nodes(), azimuth.weights(), Interval::UNIT)?,
-///     Rule1d::new(height.nodes(), height.weights(), Interval::SYMMETRIC_UNIT)?,
+///     BorrowedRule::new(azimuth.nodes(), azimuth.weights(), Interval::UNIT)?,
+///     BorrowedRule::new(height.nodes(), height.weights(), Interval::SYMMETRIC_UNIT)?,
 /// )?;
 /// let point = PointMass::new(1.0)?;
 /// let map = FrameMap::new(&nalgebra::Rotation3::identity(), &Vec3::new(-3.0, 0.0, 0.0))?;

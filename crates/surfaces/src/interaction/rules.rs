@@ -51,7 +51,7 @@
 use super::body::BodyShape;
 use super::error::InteractionError;
 use super::kernel::SolidTable;
-use crate::{Ellipsoid, Interval, LaminaNodes, Real, Rule1d, Surface, SurfaceNodes};
+use crate::{BorrowedRule, EllipsoidSurface, Interval, LaminaNodes, Real, Surface, SurfaceNodes};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::sync::Arc;
 use surfgrav_quadrature::{GaussLegendre, Rule1D};
@@ -218,14 +218,14 @@ pub(crate) fn build_table(shape: &BodyShape, key: TableKey) -> Result<NodeTable,
     let n_transverse = usize::from(key.transverse.max(1));
     let eps = CLUSTERING[usize::from(key.clustering).min(CLUSTERING.len() - 1)];
     let (phi, w_phi) = azimuth_rule(n_azimuth, eps, key.half_azimuth);
-    let azimuth = Rule1d::new(&phi, &w_phi, Interval::FULL_TURN)?;
+    let azimuth = BorrowedRule::new(&phi, &w_phi, Interval::FULL_TURN)?;
     match shape {
         BodyShape::Solid(e) => Ok(NodeTable::Solid(Arc::new(SolidTable::new(
             ellipsoid_table(e, key, azimuth, n_transverse)?,
         )))),
         BodyShape::Disk(lamina) => {
             let radial = gauss(n_transverse, 0.0, lamina.radius())?;
-            let radial_rule = Rule1d::new(
+            let radial_rule = BorrowedRule::new(
                 radial.nodes(),
                 radial.weights(),
                 Interval::new(0.0, lamina.radius())?,
@@ -268,16 +268,16 @@ fn split_rule(
 }
 
 fn ellipsoid_table(
-    e: &Ellipsoid,
+    e: &EllipsoidSurface,
     key: TableKey,
-    azimuth: Rule1d<'_>,
+    azimuth: BorrowedRule<'_>,
     n_transverse: usize,
 ) -> Result<SurfaceNodes, InteractionError> {
     match key.parametrisation {
         Parametrisation::AzimuthHeight | Parametrisation::Aimed | Parametrisation::Automatic => {
             let c = e.z_semi_axis();
             let (nodes, weights) = split_rule(n_transverse, 0.0, c, key.half_transverse)?;
-            let rule = Rule1d::new(&nodes, &weights, Interval::new(-c, c)?)?;
+            let rule = BorrowedRule::new(&nodes, &weights, Interval::new(-c, c)?)?;
             Ok(SurfaceNodes::with_periodic_rule(
                 &e.azimuth_height(),
                 azimuth,
@@ -288,7 +288,7 @@ fn ellipsoid_table(
             let (nodes, weights) = split_rule(n_transverse, FRAC_PI_2, PI, key.half_transverse)?;
             // θ measured from the +z pole: the upper panel is θ ∈ [0, π/2].
             let nodes: Vec<Real> = nodes.iter().map(|&x| PI - x).collect();
-            let rule = Rule1d::new(&nodes, &weights, Interval::new(0.0, PI)?)?;
+            let rule = BorrowedRule::new(&nodes, &weights, Interval::new(0.0, PI)?)?;
             Ok(SurfaceNodes::with_periodic_rule(
                 &e.polar_azimuth(),
                 azimuth,
@@ -300,7 +300,7 @@ fn ellipsoid_table(
 
 fn surface_table(
     surface: &dyn Surface,
-    azimuth: Rule1d<'_>,
+    azimuth: BorrowedRule<'_>,
     n_transverse: usize,
 ) -> Result<SurfaceNodes, InteractionError> {
     let domain = surface.parameter_domain();
@@ -313,7 +313,7 @@ fn surface_table(
         transverse_interval.start(),
         transverse_interval.end(),
     )?;
-    let transverse = Rule1d::new(t.nodes(), t.weights(), transverse_interval)?;
+    let transverse = BorrowedRule::new(t.nodes(), t.weights(), transverse_interval)?;
     Ok(SurfaceNodes::with_periodic_rule(
         surface, azimuth, transverse,
     )?)
@@ -323,7 +323,7 @@ fn surface_table(
 /// 300 × 150 table (for user surfaces that do not know it).
 pub(crate) fn surface_volume(surface: &dyn Surface) -> Option<Real> {
     let (phi, w) = azimuth_rule(300, 1.0, false);
-    let azimuth = Rule1d::new(&phi, &w, Interval::FULL_TURN).ok()?;
+    let azimuth = BorrowedRule::new(&phi, &w, Interval::FULL_TURN).ok()?;
     surface_table(surface, azimuth, 150)
         .ok()
         .map(|t| t.enclosed_volume())

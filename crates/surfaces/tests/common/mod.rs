@@ -9,7 +9,7 @@
 use nalgebra::{Rotation3, Vector3};
 use std::f64::consts::PI;
 use surfgrav_quadrature::{GaussLegendre, Rule1D};
-use surfgrav_surfaces::{Interval, Rule1d};
+use surfgrav_surfaces::{BorrowedRule, Interval};
 
 /// The workspace tolerance policy.
 #[allow(unused_imports)]
@@ -26,8 +26,8 @@ pub struct OwnedRule {
 }
 
 impl OwnedRule {
-    pub fn rule(&self) -> Rule1d<'_> {
-        Rule1d::new(&self.nodes, &self.weights, self.interval).expect("valid test rule")
+    pub fn rule(&self) -> BorrowedRule<'_> {
+        BorrowedRule::new(&self.nodes, &self.weights, self.interval).expect("valid test rule")
     }
 }
 

@@ -13,7 +13,7 @@ use surfgrav_surfaces::interaction::{
     Body, Interaction, InteractionEngine, InteractionError, InteractionOptions, MethodChoice,
     SurfaceChoice,
 };
-use surfgrav_surfaces::{CompensatedSum, CompensatedSum3, Ellipsoid};
+use surfgrav_surfaces::{CompensatedSum, CompensatedSum3, EllipsoidSurface};
 
 /// The workspace tolerance policy.
 #[allow(unused_imports)]
@@ -93,7 +93,7 @@ pub fn errors(x: &Interaction, reference: &Interaction) -> Errors {
 /// angle, trapezoid in azimuth) of ρ a_B, ρ x × a_B and ρ Φ_B: independent of every surface
 /// formula.
 pub fn volume_integrals(
-    shape: &Ellipsoid,
+    shape: &EllipsoidSurface,
     mass: f64,
     pose_a: &Pose,
     source: &dyn Potential,
