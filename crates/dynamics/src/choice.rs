@@ -98,11 +98,11 @@ impl IntegratorKind {
         IntegratorKind::Dop853,
     ];
 
-    /// The smallest tolerance an adaptive kind accepts, $10^{-15} \approx 4.5\,\epsilon$
+    /// The smallest tolerance an adaptive kind accepts, $10^{-15} \approx 4.5\\,\epsilon$
     /// ($\epsilon = 2.2\times10^{-16}$).
     ///
     /// A step is accepted when every component's error estimate is at most
-    /// $\mathrm{tol}\,(1 + |y_i|)$. The new state $y + h\sum_i b_i k_i$ is itself rounded to
+    /// $\mathrm{tol}\\,(1 + |y_i|)$. The new state $y + h\sum_i b_i k_i$ is itself rounded to
     /// about $\epsilon/2$ relative, and the estimate (a difference of two such sums over 7 or 12
     /// stages) carries a few $\epsilon$ of rounding, so below a few $\epsilon$ the estimate is
     /// rounding noise and the tolerance cannot be met: the controller either shrinks the step
@@ -159,7 +159,7 @@ impl IntegratorKind {
 
     /// Builds the integrator. A fixed-step kind uses `step` (time units) and ignores
     /// `tolerance`; an adaptive kind uses `tolerance` as both its relative and its absolute
-    /// tolerance (the mixed error test $|e_i| \le \mathrm{tol}\,(1 + |y_i|)$ per component of
+    /// tolerance (the mixed error test $|e_i| \le \mathrm{tol}\\,(1 + |y_i|)$ per component of
     /// positions and velocities) and ignores `step`. The step must be positive and finite, the
     /// tolerance in [[`Self::MIN_TOLERANCE`], [`Self::MAX_TOLERANCE`]).
     pub fn build(

@@ -1,12 +1,12 @@
 //! Conservation diagnostics: total energy, angular momentum and the statistics of their per-step
 //! changes (the founding paper's Table 2).
 //!
-//! - Energy $E = T + V$ with $T = \sum_k \tfrac12 m_k |\dot{\mathbf R}_k|^2 + \tfrac12\boldsymbol\omega_k\cdot\mathsf I_k\boldsymbol\omega_k$
+//! - Energy $E = T + V$ with $T = \sum_k \tfrac12 m_k |\dot{\mathbf R}\_k|^2 + \tfrac12\boldsymbol\omega_k\cdot\mathsf I_k\boldsymbol\omega_k$
 //!   (translation and spin; a body without an inertia tensor has no spin energy) and $V$ the
 //!   model's mutual potential energy.
 //! - Total angular momentum about the origin
-//!   $\mathbf J = \sum_k m_k \mathbf R_k \times \dot{\mathbf R}_k + \mathsf Q_k\mathsf I_k\mathsf Q_k^{-1}\boldsymbol\omega_k$.
-//! - Per-step changes $\Delta E_k = E_k - E_{k-1}$ and $\Delta J_k = |\mathbf J_k| - |\mathbf J_{k-1}|$
+//!   $\mathbf J = \sum_k m_k \mathbf R_k \times \dot{\mathbf R}\_k + \mathsf Q_k\mathsf I_k\mathsf Q_k^{-1}\boldsymbol\omega_k$.
+//! - Per-step changes $\Delta E_k = E_k - E\_{k-1}$ and $\Delta J_k = |\mathbf J_k| - |\mathbf J\_{k-1}|$
 //!   between consecutive samples; their mean, sample standard deviation $\sigma$ (divisor $N-1$),
 //!   standard error $\sigma/\sqrt N$ and the slope of the least-squares line of the change against
 //!   the time at the end of the step.
@@ -46,7 +46,7 @@ pub fn total_energy(
 }
 
 /// Spin angular momentum of one body about its centroid, world frame:
-/// $\mathsf Q\,\mathsf I\,\mathsf Q^{-1}\boldsymbol\omega$ (zero without an inertia tensor).
+/// $\mathsf Q\\,\mathsf I\\,\mathsf Q^{-1}\boldsymbol\omega$ (zero without an inertia tensor).
 pub fn spin_angular_momentum(
     inertia: Option<surfgrav_potentials::InertiaTensor>,
     body: &crate::BodyState,
@@ -62,7 +62,7 @@ pub fn spin_angular_momentum(
 }
 
 /// Total angular momentum about the origin, orbital and spin:
-/// $\mathbf J = \sum_k m_k\mathbf R_k\times\dot{\mathbf R}_k + \mathsf Q_k\mathsf I_k\boldsymbol\omega_k$
+/// $\mathbf J = \sum_k m_k\mathbf R_k\times\dot{\mathbf R}\_k + \mathsf Q_k\mathsf I_k\boldsymbol\omega_k$
 /// (the spins count for bodies whose model gives an inertia tensor).
 pub fn angular_momentum(model: &dyn InteractionModel, state: &TwoBodyState) -> Vec3 {
     state.body_a.position.cross(&state.body_a.velocity) * model.mass_a()

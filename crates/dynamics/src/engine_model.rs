@@ -5,8 +5,8 @@
 //!
 //! Every force evaluation calls the engine for the two [`Body`]s at their poses (integrator
 //! stages [`InteractionEngine::force`], which certifies the force alone; energies and torques
-//! [`InteractionEngine::interact`]) (Conway's surface integrals, $\mathbf F_A = -\rho_A\oint_{S_A}\Phi_B\,\mathrm d\mathbf S$,
-//! sign convention $\Phi < 0$, $\mathbf F_A = -\nabla_{\mathbf R_A}V$, $V < 0$). The engine needs
+//! [`InteractionEngine::interact`]) (Conway's surface integrals, $\mathbf F_A = -\rho_A\oint\_{S_A}\Phi_B\\,\mathrm d\mathbf S$,
+//! sign convention $\Phi < 0$, $\mathbf F_A = -\nabla\_{\mathbf R_A}V$, $V < 0$). The engine needs
 //! `&mut` access, the model trait is `&self` and `Send + Sync`, so the engine sits behind a
 //! [`Mutex`]. The engine's torques are reported through [`InteractionModel::torques`], so the
 //! integrators refuse a start whose torques do not vanish. Overlap or touching bodies map to
@@ -25,7 +25,7 @@
 //! $5\times10^{-13}$, $10^{-12}$ that converges), checked at the midpoints between nodes to
 //! $2\times10^{-14}$ relative by default (falling back to issue 4's $10^{-13}$ when the direct
 //! values are too noisy; see [`SceneSettings::table_tolerance`]); the force is the exact
-//! derivative of the interpolant, $\mathbf F_A = V'(r)\,\hat{\mathbf r}$. The table reaches down
+//! derivative of the interpolant, $\mathbf F_A = V'(r)\\,\hat{\mathbf r}$. The table reaches down
 //! to the contact distance when the orbit does (the nodes are interior, so the engine never sees
 //! touching bodies), so a contact event is located on the table as on the direct path.
 //!

@@ -1,7 +1,7 @@
 //! Integrators of the translational two-body motion, behind one trait, [`Integrator`].
 //!
-//! The equations of motion are $m_A \ddot{\mathbf R}_A = \mathbf F_A$,
-//! $m_B \ddot{\mathbf R}_B = -\mathbf F_A$, with $\mathbf F_A$ from an [`InteractionModel`];
+//! The equations of motion are $m_A \ddot{\mathbf R}\_A = \mathbf F_A$,
+//! $m_B \ddot{\mathbf R}\_B = -\mathbf F_A$, with $\mathbf F_A$ from an [`InteractionModel`];
 //! on this translation path each attitude turns uniformly about its constant angular velocity
 //! (valid where every torque vanishes along the motion, [`crate::MotionPath::Translation`]);
 //! every other scene integrates rotation too ([`crate::rigid`]), chosen by the model's
@@ -25,13 +25,13 @@
 //! - [`Adaptive`] with an [`EmbeddedPair`]: Dormand–Prince 5(4) (Dormand & Prince 1980) or
 //!   DOP853 (Hairer, Nørsett & Wanner), both with local extrapolation and FSAL. The error of a
 //!   step is measured component-wise against
-//!   $\mathrm{sc}_i = \mathrm{atol} + \mathrm{rtol}\max(|y_{0,i}|,|y_{1,i}|)$ over the 12
+//!   $\mathrm{sc}\_i = \mathrm{atol} + \mathrm{rtol}\max(|y\_{0,i}|,|y\_{1,i}|)$ over the 12
 //!   components of both positions and velocities: DP5(4) uses the root mean square
-//!   $\mathrm{err} = \big(\tfrac1{12}\sum_i (e_i/\mathrm{sc}_i)^2\big)^{1/2}$, DOP853 combines its
-//!   5th- and 3rd-order estimates as $\mathrm{err} = \|e_5\|^2/\sqrt{\|e_5\|^2 + 0.01\|e_3\|^2}$
+//!   $\mathrm{err} = \big(\tfrac1{12}\sum_i (e_i/\mathrm{sc}\_i)^2\big)^{1/2}$, DOP853 combines its
+//!   5th- and 3rd-order estimates as $\mathrm{err} = \\|e_5\\|^2/\sqrt{\\|e_5\\|^2 + 0.01\\|e_3\\|^2}$
 //!   (both norms root-mean-square scaled). A step is accepted when err ≤ 1, and the next step is
-//!   $h \leftarrow h\,\min(f_{\max}, \max(f_{\min}, 0.9\,\mathrm{err}^{-1/(q+1)}))$ with q = 4,
-//!   $[f_{\min}, f_{\max}] = [0.2, 5]$ for DP5(4) and q = 7, [1/3, 6] for DOP853 (no growth
+//!   $h \leftarrow h\\,\min(f\_{\max}, \max(f\_{\min}, 0.9\\,\mathrm{err}^{-1/(q+1)}))$ with q = 4,
+//!   $[f\_{\min}, f\_{\max}] = [0.2, 5]$ for DP5(4) and q = 7, [1/3, 6] for DOP853 (no growth
 //!   after a rejection). A step below `min_step` is a typed error carrying the time; so is a
 //!   non-finite error estimate or state. Round-off: the increment $h\sum_i b_i\mathbf k_i$ is
 //!   added with compensated (Kahan) summation and each stage sum is formed before its product
@@ -255,7 +255,7 @@ pub trait Integrator {
     ) -> Result<RunSummary, DynamicsError>;
 
     /// As [`Integrator::integrate`], and also calls `emit(time, state)` at the evenly spaced
-    /// times $t_{\mathrm{start}} + k\,\Delta$ (`interval` Δ positive and finite; times computed
+    /// times $t\_{\mathrm{start}} + k\\,\Delta$ (`interval` Δ positive and finite; times computed
     /// from k, no accumulated round-off) up to the last sample, in order, each before the sample
     /// that ends its step reaches `observer`. The states come from the method's dense output: the
     /// quintic Hermite interpolant of the samples ([`crate::interpolate::EvenOutput`]) by default;
@@ -284,7 +284,7 @@ pub trait Integrator {
     }
 }
 
-/// Positions and velocities of both bodies: $(\mathbf R_A, \mathbf R_B, \dot{\mathbf R}_A, \dot{\mathbf R}_B)$.
+/// Positions and velocities of both bodies: $(\mathbf R_A, \mathbf R_B, \dot{\mathbf R}\_A, \dot{\mathbf R}\_B)$.
 #[derive(Debug, Clone, Copy)]
 struct Phase([Vec3; 4]);
 
@@ -652,7 +652,7 @@ impl FixedScheme {
 }
 
 /// A fixed-step integrator: steps of `step` from the start, the last one shortened to land on the
-/// end time exactly. Sample times are $t_0 + k\,h$ (no accumulated round-off in time).
+/// end time exactly. Sample times are $t_0 + k\\,h$ (no accumulated round-off in time).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FixedStep {
     scheme: FixedScheme,
@@ -990,7 +990,7 @@ pub struct Adaptive {
 type Stages = [[Vec3; 4]; MAX_STAGES];
 
 /// The step-size control shared by the adaptive loops (translation and rotation): the step
-/// factor $0.9\,\mathrm{err}^{-1/(q+1)}$ within the tableau's range, no growth right after a
+/// factor $0.9\\,\mathrm{err}^{-1/(q+1)}$ within the tableau's range, no growth right after a
 /// rejection, the step floor and the step budget (module documentation).
 #[derive(Debug, Clone)]
 pub(crate) struct StepControl {
@@ -1526,7 +1526,7 @@ impl Adaptive {
 }
 
 /// DOP853's continuous extension over one step (module documentation): $\mathbf y_0$, then
-/// $\Delta$, $\beta$, $\Delta - h\mathbf k_{13} - \beta$, $\mathbf d_4, \dots, \mathbf d_7$.
+/// $\Delta$, $\beta$, $\Delta - h\mathbf k\_{13} - \beta$, $\mathbf d_4, \dots, \mathbf d_7$.
 struct DenseStep {
     start: Real,
     step: Real,

@@ -4,27 +4,27 @@
 //!
 //! # Method
 //!
-//! $[r_{min}, r_{max}]$ is split into pieces; on a piece $[a, b]$ with $x = (2r - a - b)/(b - a)$,
-//! $$V(r) \approx \sum_{j=0}^{n} c_j T_j(x), \qquad
-//!   c_j = \frac{2 - \delta_{j0}}{n+1} \sum_{k=0}^{n} V(r_k) \cos\frac{\pi j (k + 1/2)}{n + 1},$$
+//! $[r\_{min}, r\_{max}]$ is split into pieces; on a piece $[a, b]$ with $x = (2r - a - b)/(b - a)$,
+//! $$V(r) \approx \sum\_{j=0}^{n} c_j T_j(x), \qquad
+//!   c_j = \frac{2 - \delta\_{j0}}{n+1} \sum\_{k=0}^{n} V(r_k) \cos\frac{\pi j (k + 1/2)}{n + 1},$$
 //! interpolating at the Chebyshev points of the first kind $x_k = \cos(\pi(k + 1/2)/(n+1))$.
 //! The derivative series $V'(r) = \frac{2}{b-a}\sum_j d_j T_j(x)$ follows from
-//! $d_{j-1} = d_{j+1} + 2 j c_j$ ($d_n = d_{n+1} = 0$, then $d_0 \leftarrow d_0/2$); both are
+//! $d\_{j-1} = d\_{j+1} + 2 j c_j$ ($d_n = d\_{n+1} = 0$, then $d_0 \leftarrow d_0/2$); both are
 //! evaluated by Clenshaw's recurrence, split into even and odd parts (two independent chains of
 //! half the length; see `Split`). A piece is accepted when at the $n$ midpoints between its
-//! nodes (where the interpolation error is largest) $|V_{interp} - V| \le \tau |V|$; the degrees
+//! nodes (where the interpolation error is largest) $|V\_{interp} - V| \le \tau |V|$; the degrees
 //! n = 16, 32, 64 are tried in turn, and the interval is halved when none passes (depth ≤ 40).
-//! A degree whose last two coefficients exceed $1000\,\tau|c_0|$ is passed over without its
+//! A degree whose last two coefficients exceed $1000\\,\tau|c_0|$ is passed over without its
 //! checks (they could not pass; see `TAIL_REJECTION`).
 //! Few pieces of high degree are preferred to many of low degree because pieces meet with a small
 //! kink (their derivatives differ by up to $\sim n^2\tau$ relative), which costs energy
 //! conservation each time a long step crosses it.
 //!
 //! Because the force is the exact gradient of the interpolated energy, the integrated system is
-//! Hamiltonian with energy $T + V_{interp}$: an integrator conserves it as well as it would the
+//! Hamiltonian with energy $T + V\_{interp}$: an integrator conserves it as well as it would the
 //! exact one, and the energy it reports agrees with the direct $V$ to within $\tau$.
 //!
-//! Domain: separations in $[r_{min}, r_{max}]$; outside, the model returns
+//! Domain: separations in $[r\_{min}, r\_{max}]$; outside, the model returns
 //! [`InteractionError::OutsideRange`] (never extrapolates).
 
 use crate::model::{InteractionError, InteractionModel};
@@ -85,10 +85,10 @@ struct Piece {
 
 /// A Chebyshev series $\sum_j c_j T_j(x)$ split into its even and odd parts, summed as two
 /// independent Clenshaw recurrences in $y = 2x^2 - 1$ (half the length of the dependency chain
-/// of one recurrence in $x$, so about half the latency): $T_{2k}(x) = T_k(y)$ and
-/// $T_{2k+1}(x) = x\,V_k(y)$, with $V_k$ the Chebyshev polynomials of the third kind
-/// ($V_0 = 1$, $V_1 = 2y - 1$, $V_{k+1} = 2yV_k - V_{k-1}$). With
-/// $b_k = a_k + 2y\,b_{k+1} - b_{k+2}$ the sums are $b_0 - y\,b_1$ (even part) and
+/// of one recurrence in $x$, so about half the latency): $T\_{2k}(x) = T_k(y)$ and
+/// $T\_{2k+1}(x) = x\\,V_k(y)$, with $V_k$ the Chebyshev polynomials of the third kind
+/// ($V_0 = 1$, $V_1 = 2y - 1$, $V\_{k+1} = 2yV_k - V\_{k-1}$). With
+/// $b_k = a_k + 2y\\,b\_{k+1} - b\_{k+2}$ the sums are $b_0 - y\\,b_1$ (even part) and
 /// $b_0 - b_1$ (odd part).
 #[derive(Debug, Clone, PartialEq)]
 struct Split {
@@ -401,7 +401,7 @@ impl InteractionModel for InterpolatedCentralPair {
 /// (themselves clipped to the positive finite numbers). Coincident centroids are an error.
 ///
 /// `energy` returns $V(r)$ and its slope $V'(r)$ (one call of the surface-integral engine gives
-/// both: $\mathbf F_A = V'(r)\,\hat{\mathbf r}$).
+/// both: $\mathbf F_A = V'(r)\\,\hat{\mathbf r}$).
 ///
 /// # Method
 ///

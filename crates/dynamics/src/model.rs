@@ -3,12 +3,12 @@
 //! # Conventions
 //!
 //! With $\mathbf r = \mathbf R_B - \mathbf R_A$, $r = |\mathbf r|$ and the mutual potential energy
-//! $V$ (negative for gravity), the force on A is $\mathbf F_A = -\nabla_{\mathbf R_A} V$ and the
+//! $V$ (negative for gravity), the force on A is $\mathbf F_A = -\nabla\_{\mathbf R_A} V$ and the
 //! force on B is $\mathbf F_B = -\mathbf F_A$ (Newton's third law; the models return $\mathbf F_A$
 //! only). For a central pair $V = V(r)$,
-//! $$\mathbf F_A = V'(r)\,\hat{\mathbf r},$$
+//! $$\mathbf F_A = V'(r)\\,\hat{\mathbf r},$$
 //! which points from A toward B when $V' > 0$ (attraction). For two point masses
-//! $V = -G m_A m_B / r$ and $\mathbf F_A = G m_A m_B\, \mathbf r / r^3$.
+//! $V = -G m_A m_B / r$ and $\mathbf F_A = G m_A m_B\\, \mathbf r / r^3$.
 //!
 //! The energy is a separate method because the integrators never need it: it is evaluated only
 //! for diagnostics and output.
@@ -34,7 +34,7 @@ pub struct Wrench {
 pub enum MotionPath {
     /// Translation only: the torques vanish along the whole motion (by a symmetry the motion
     /// preserves), so each body keeps its angular velocity and its attitude turns uniformly
-    /// about it, $\mathsf Q(t) = \exp\big((t - t_0)\,\boldsymbol\omega\big)\mathsf Q_0$.
+    /// about it, $\mathsf Q(t) = \exp\big((t - t_0)\\,\boldsymbol\omega\big)\mathsf Q_0$.
     Translation(&'static str),
     /// Translation and rotation ([`crate::rigid`]).
     Rotation(&'static str),

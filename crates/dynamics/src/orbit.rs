@@ -1,7 +1,7 @@
 //! Analysis of the relative orbit $\mathbf r = \mathbf R_B - \mathbf R_A$: apsides, periods,
 //! precession, minimum separation.
 //!
-//! - **Apsides** are the zeros of $\tfrac12\,\mathrm d r^2/\mathrm dt = \mathbf r\cdot\dot{\mathbf r}$:
+//! - **Apsides** are the zeros of $\tfrac12\\,\mathrm d r^2/\mathrm dt = \mathbf r\cdot\dot{\mathbf r}$:
 //!   an apocentre where it changes from positive to negative, a pericentre where it changes from
 //!   negative to positive. Each is located between two samples by bisection on the quintic
 //!   Hermite interpolant of [`crate::interpolate`] (error $O(h^6)$ in position), not at step
@@ -9,15 +9,15 @@
 //! - **Azimuth** $\psi$: the angle of $\mathbf r$ in the orbital plane, measured about the unit
 //!   vector of the initial relative angular momentum $\hat{\mathbf n} \propto \mathbf r \times \dot{\mathbf r}$
 //!   (so it increases in the direction of motion), unwrapped by summing the angle between
-//!   consecutive samples, $\Delta\psi = \operatorname{atan2}(\hat{\mathbf n}\cdot(\mathbf r_{k-1}\times\mathbf r_k),\ \mathbf r_{k-1}\cdot\mathbf r_k)$
+//!   consecutive samples, $\Delta\psi = \operatorname{atan2}(\hat{\mathbf n}\cdot(\mathbf r\_{k-1}\times\mathbf r_k),\ \mathbf r\_{k-1}\cdot\mathbf r_k)$
 //!   (valid while a step sweeps less than π).
 //! - **Radial period** $T_r$: mean time between consecutive apocentres.
-//! - **Precession angle** per radial period $\psi_p = \overline{\psi_{k+1} - \psi_k} - 360°$ over
+//! - **Precession angle** per radial period $\psi_p = \overline{\psi\_{k+1} - \psi_k} - 360°$ over
 //!   consecutive apocentres, in degrees: positive when the apsides advance in the direction of
 //!   motion.
-//! - **Azimuthal period** $T_\psi = 360°\, T_r / (360° + \psi_p)$: the time to sweep 360° at the
+//! - **Azimuthal period** $T\_\psi = 360°\\, T_r / (360° + \psi_p)$: the time to sweep 360° at the
 //!   mean angular rate over whole radial periods.
-//! - **Precession rate** $\Omega_p = 60\,\psi_p/T_r$ in arcminutes per time unit.
+//! - **Precession rate** $\Omega_p = 60\\,\psi_p/T_r$ in arcminutes per time unit.
 //! - **Minimum separation**: the smallest of the interpolated pericentre distances and the sampled
 //!   separations.
 //!
@@ -57,7 +57,7 @@ pub struct OrbitReport {
     pub minimum_separation_time: Option<Real>,
     /// $T_r$.
     pub radial_period: Option<Real>,
-    /// $T_\psi$.
+    /// $T\_\psi$.
     pub azimuthal_period: Option<Real>,
     /// $\psi_p$ in degrees.
     pub precession_angle_deg: Option<Real>,

@@ -3,36 +3,36 @@
 //!
 //! # Equations
 //!
-//! Each body $k \in \{A, B\}$ has its centroid $\mathbf R_k$, velocity $\dot{\mathbf R}_k$,
+//! Each body $k \in \\{A, B\\}$ has its centroid $\mathbf R_k$, velocity $\dot{\mathbf R}\_k$,
 //! attitude $\mathsf Q_k$ (a unit quaternion, body frame → world frame) and body-frame angular
 //! momentum $\boldsymbol\Pi_k = \mathsf I_k\boldsymbol\omega_k$ about its centroid, with
 //! $\mathsf I_k$ its inertia tensor in the body frame ([`surfgrav_potentials::inertia`]). With the
 //! force $\mathbf F_A = -\mathbf F_B$ and the torques $\mathbf M_A, \mathbf M_B$ (world frame,
 //! each about its own centroid) from one evaluation of the model ([`InteractionModel::wrench`]),
-//! $$m_k\ddot{\mathbf R}_k = \mathbf F_k,\qquad
-//! \dot{\mathsf Q}_k = \tfrac12\,\mathsf Q_k\otimes(0, \boldsymbol\omega_k),\qquad
-//! \dot{\boldsymbol\Pi}_k = \boldsymbol\Pi_k\times\boldsymbol\omega_k + \mathsf Q_k^{-1}\mathbf M_k,$$
+//! $$m_k\ddot{\mathbf R}\_k = \mathbf F_k,\qquad
+//! \dot{\mathsf Q}\_k = \tfrac12\\,\mathsf Q_k\otimes(0, \boldsymbol\omega_k),\qquad
+//! \dot{\boldsymbol\Pi}\_k = \boldsymbol\Pi_k\times\boldsymbol\omega_k + \mathsf Q_k^{-1}\mathbf M_k,$$
 //! the last being Euler's equations $\mathsf I\dot{\boldsymbol\omega} + \boldsymbol\omega\times\mathsf I\boldsymbol\omega = \mathbf M$
 //! in the body frame. A body without an inertia tensor (a point mass) cannot rotate: its
 //! angular velocity must be zero and its attitude stays as given.
 //!
 //! Conserved: the energy
-//! $E = \sum_k \big(\tfrac12 m_k|\dot{\mathbf R}_k|^2 + \tfrac12\boldsymbol\omega_k\cdot\boldsymbol\Pi_k\big) + V$ and the total angular momentum
-//! about the origin $\mathbf J = \sum_k \big(m_k\mathbf R_k\times\dot{\mathbf R}_k + \mathsf Q_k\boldsymbol\Pi_k\big)$,
+//! $E = \sum_k \big(\tfrac12 m_k|\dot{\mathbf R}\_k|^2 + \tfrac12\boldsymbol\omega_k\cdot\boldsymbol\Pi_k\big) + V$ and the total angular momentum
+//! about the origin $\mathbf J = \sum_k \big(m_k\mathbf R_k\times\dot{\mathbf R}\_k + \mathsf Q_k\boldsymbol\Pi_k\big)$,
 //! because the model's torques obey $\mathbf M_B = -\mathbf M_A - (\mathbf R_A - \mathbf R_B)\times\mathbf F_A$.
 //!
 //! # Geometric integrators (`leapfrog`, `yoshida4`, `yoshida6`, `yoshida8`)
 //!
-//! The splitting of Dullweber, Leimkuhler & McLachlan (1997): $H = T_{\mathrm{trans}} + T_{\mathrm{rot}} + V$,
+//! The splitting of Dullweber, Leimkuhler & McLachlan (1997): $H = T\_{\mathrm{trans}} + T\_{\mathrm{rot}} + V$,
 //! a step of length $h$ is kick($h/2$) – drift($h$) – kick($h/2$):
-//! - kick: $\dot{\mathbf R}_k \mathrel{+}= \tfrac h2\,\mathbf F_k/m_k$ and
-//!   $\boldsymbol\Pi_k \mathrel{+}= \tfrac h2\,\mathsf Q_k^{-1}\mathbf M_k$ (the exact flow of $V$);
-//! - drift: $\mathbf R_k \mathrel{+}= h\dot{\mathbf R}_k$, and the free rigid body split into
-//!   its principal terms $T_{\mathrm{rot}} = \sum_i \Pi_i^2/2I_i$ as
-//!   $R_1(h/2)\,R_2(h/2)\,R_3(h)\,R_2(h/2)\,R_1(h/2)$, where $R_i(t)$ is the exact flow of
-//!   $\Pi_i^2/2I_i$: a rotation about the principal axis $i$ by $\theta = t\,\Pi_i/I_i$,
+//! - kick: $\dot{\mathbf R}\_k \mathrel{+}= \tfrac h2\\,\mathbf F_k/m_k$ and
+//!   $\boldsymbol\Pi_k \mathrel{+}= \tfrac h2\\,\mathsf Q_k^{-1}\mathbf M_k$ (the exact flow of $V$);
+//! - drift: $\mathbf R_k \mathrel{+}= h\dot{\mathbf R}\_k$, and the free rigid body split into
+//!   its principal terms $T\_{\mathrm{rot}} = \sum_i \Pi_i^2/2I_i$ as
+//!   $R_1(h/2)\\,R_2(h/2)\\,R_3(h)\\,R_2(h/2)\\,R_1(h/2)$, where $R_i(t)$ is the exact flow of
+//!   $\Pi_i^2/2I_i$: a rotation about the principal axis $i$ by $\theta = t\\,\Pi_i/I_i$,
 //!   $\mathsf Q \leftarrow \mathsf Q\otimes\exp(\theta\mathbf e_i/2)$,
-//!   $\boldsymbol\Pi \leftarrow \exp(-\theta\mathbf e_i/2)\,\boldsymbol\Pi$.
+//!   $\boldsymbol\Pi \leftarrow \exp(-\theta\mathbf e_i/2)\\,\boldsymbol\Pi$.
 //!
 //! Every piece is the exact flow of a Hamiltonian term, so the step is symplectic; it is
 //! symmetric, so time reversible and of order 2; the compositions of [`FixedScheme`] raise it to
@@ -70,7 +70,7 @@ use crate::tableau::{ErrorWeights, Tableau, DOP853, DOP853_D, DOP853_DENSE_A, MA
 use nalgebra::{Quaternion, UnitQuaternion};
 use surfgrav_potentials::{InertiaTensor, Pose, Real, Vec3};
 
-/// Components of the flat state: $\mathbf R_A, \mathbf R_B, \dot{\mathbf R}_A, \dot{\mathbf R}_B$
+/// Components of the flat state: $\mathbf R_A, \mathbf R_B, \dot{\mathbf R}\_A, \dot{\mathbf R}\_B$
 /// (12), $\mathsf Q_A, \mathsf Q_B$ (8, scalar first), $\boldsymbol\Pi_A, \boldsymbol\Pi_B$ (6).
 const N: usize = 26;
 type Flat = [Real; N];
@@ -224,7 +224,7 @@ impl<'m> System<'m> {
         t
     }
 
-    /// The rigid state of a two-body state: body angular momenta $\mathsf I\,\mathsf Q^{-1}\boldsymbol\omega$.
+    /// The rigid state of a two-body state: body angular momenta $\mathsf I\\,\mathsf Q^{-1}\boldsymbol\omega$.
     fn rigid(&self, state: &TwoBodyState) -> Result<Rigid, DynamicsError> {
         let bodies = [&state.body_a, &state.body_b];
         let mut l = [Vec3::zeros(); 2];

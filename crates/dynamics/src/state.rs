@@ -42,7 +42,7 @@ impl BodyState {
     }
 
     /// The same body with its attitude turned by its own angular velocity over `elapsed`:
-    /// $\mathsf Q \leftarrow \exp(\text{elapsed}\,\boldsymbol\omega)\,\mathsf Q$ (uniform spin
+    /// $\mathsf Q \leftarrow \exp(\text{elapsed}\\,\boldsymbol\omega)\\,\mathsf Q$ (uniform spin
     /// about a fixed axis: exact for a torque-free sphere, and for an axisymmetric body spinning
     /// about its symmetry axis).
     pub fn spun(&self, elapsed: Real) -> Self {
@@ -85,7 +85,7 @@ impl TwoBodyState {
         self.body_b.position - self.body_a.position
     }
 
-    /// Relative velocity $\dot{\mathbf r} = \dot{\mathbf R}_B - \dot{\mathbf R}_A$.
+    /// Relative velocity $\dot{\mathbf r} = \dot{\mathbf R}\_B - \dot{\mathbf R}\_A$.
     pub fn relative_velocity(&self) -> Vec3 {
         self.body_b.velocity - self.body_a.velocity
     }

@@ -1,7 +1,7 @@
 //! Butcher tableaux of the embedded Runge–Kutta pairs behind [`crate::Adaptive`].
 //!
 //! A pair advances $\mathbf y_1 = \mathbf y_0 + h\sum_i b_i \mathbf k_i$ with stages
-//! $\mathbf k_i = \mathbf f(t_0 + c_i h,\ \mathbf y_0 + h\sum_{j<i} a_{ij}\mathbf k_j)$. Both pairs
+//! $\mathbf k_i = \mathbf f(t_0 + c_i h,\ \mathbf y_0 + h\sum\_{j<i} a\_{ij}\mathbf k_j)$. Both pairs
 //! here are FSAL ("first same as last"): their last stage row equals $b$, so that stage is
 //! $\mathbf f(t_1, \mathbf y_1)$ and becomes the first stage of the next step.
 //!
@@ -12,21 +12,21 @@
 //!   plus the FSAL stage, 12 force evaluations per step. Two embedded estimates, of 5th order
 //!   $\mathbf e_5 = h\sum_i E_i\mathbf k_i$ and of 3rd order
 //!   $\mathbf e_3 = h\sum_i (b_i - \breve b_i)\mathbf k_i$, are combined as
-//!   $$\mathrm{err} = \frac{\|\mathbf e_5\|^2}{\sqrt{\|\mathbf e_5\|^2 + 0.01\,\|\mathbf e_3\|^2}}$$
+//!   $$\mathrm{err} = \frac{\\|\mathbf e_5\\|^2}{\sqrt{\\|\mathbf e_5\\|^2 + 0.01\\,\\|\mathbf e_3\\|^2}}$$
 //!   (norms scaled by the tolerances, root mean square over the components), which behaves like
 //!   $O(h^8)$ and is what the step control ($\mathrm{err}^{-1/8}$) is built for.
 //! - DOP853's dense output of order 7 needs three more stages ($c = 0.1, 0.2, 7/9$) per step where
 //!   output is wanted; with $s = (t - t_0)/h$, $s' = 1 - s$,
-//!   $$\mathbf y(t_0 + sh) = \mathbf y_0 + s\big(\Delta + s'(\beta + s(\Delta - h\mathbf k_{13} - \beta + s'(\mathbf d_4 + s(\mathbf d_5 + s'(\mathbf d_6 + s\,\mathbf d_7))))))\big),$$
+//!   $$\mathbf y(t_0 + sh) = \mathbf y_0 + s\big(\Delta + s'(\beta + s(\Delta - h\mathbf k\_{13} - \beta + s'(\mathbf d_4 + s(\mathbf d_5 + s'(\mathbf d_6 + s\\,\mathbf d_7))))))\big),$$
 //!   $\Delta = \mathbf y_1 - \mathbf y_0$, $\beta = h\mathbf k_1 - \Delta$,
-//!   $\mathbf d_r = h\sum_i D_{ri}\mathbf k_i$ over all 16 stages.
+//!   $\mathbf d_r = h\sum_i D\_{ri}\mathbf k_i$ over all 16 stages.
 //!
 //! The coefficients are the published decimal values, rounded to the nearest `f64`, with one
 //! deliberate exception per pair: $b_1$ (whose stage has $c_1 = 0$, so it enters no order
 //! condition but $\sum_i b_i = 1$) is moved by a few ulp so that, in exact arithmetic on the
-//! stored values, $B_2 = (B_1)^2/2$ with $B_1 = \sum_i b_i$, $B_2 = \sum_i b_i \sum_j a_{ij}$.
+//! stored values, $B_2 = (B_1)^2/2$ with $B_1 = \sum_i b_i$, $B_2 = \sum_i b_i \sum_j a\_{ij}$.
 //! Rounding the coefficients otherwise leaves $B_2 - B_1^2/2 \approx 4\times10^{-16}$, an error
-//! $h^2 (B_2 - B_1^2/2)\,\mathbf f'\mathbf f$ of the same sign at every step, which made the energy
+//! $h^2 (B_2 - B_1^2/2)\\,\mathbf f'\mathbf f$ of the same sign at every step, which made the energy
 //! error of long fixed-step runs grow linearly (measured: $1.5\times10^{-13}$ after 500 circular
 //! orbits of 200 steps) instead of as $\sqrt t$ (Brouwer's law; after the change
 //! $5\times10^{-15}$). $B_1 - 1 \approx 4\times10^{-16}$ is then only a rescaling of time, which
@@ -63,12 +63,12 @@ pub(crate) struct Tableau {
     /// Nodes $c_i$ of the step stages (the FSAL stage included).
     #[cfg_attr(not(test), allow(dead_code))]
     pub c: &'static [Real],
-    /// Rows $i = 1, 2, \dots$ of $a_{ij}$, $j < i$; the last row is $b$ (FSAL).
+    /// Rows $i = 1, 2, \dots$ of $a\_{ij}$, $j < i$; the last row is $b$ (FSAL).
     pub a: &'static [&'static [Real]],
     /// The error estimator.
     pub error: ErrorWeights,
     /// The order $q$ the error estimate behaves like, $\mathrm{err} = O(h^{q+1})$: the step
-    /// factor is $0.9\,\mathrm{err}^{-1/(q+1)}$.
+    /// factor is $0.9\\,\mathrm{err}^{-1/(q+1)}$.
     pub error_order: u32,
     /// Smallest and largest step factor after an accepted step.
     pub factor_range: (Real, Real),
@@ -160,7 +160,7 @@ const DOP853_C_STEP: [Real; 13] = [
 /// DOP853 nodes of the dense-output stages 14–16.
 #[cfg(test)]
 const DOP853_DENSE_C: [Real; 3] = [0.1, 0.2, 0.7777777777777778];
-/// DOP853 $a_{ij}$ of stages 2–12 and the weights $b$ (row of the FSAL stage 13).
+/// DOP853 $a\_{ij}$ of stages 2–12 and the weights $b$ (row of the FSAL stage 13).
 const DOP853_A_STEP: [&[Real]; 12] = [
     &[0.05260015195876773],
     &[0.0197250569845379, 0.0591751709536137],
@@ -257,7 +257,7 @@ const DOP853_A_STEP: [&[Real]; 12] = [
         0.04471061572777259,
     ],
 ];
-/// DOP853 $a_{ij}$ of the dense-output stages 14–16.
+/// DOP853 $a\_{ij}$ of the dense-output stages 14–16.
 pub(crate) const DOP853_DENSE_A: [&[Real]; 3] = [
     &[
         0.056167502283047954,
@@ -338,7 +338,7 @@ const DOP853_BHH: [Real; 12] = [
     0.0,
     0.022058823529411766,
 ];
-/// DOP853 dense-output coefficients $D_{ri}$, $r = 4, \dots, 7$, over all 16 stages.
+/// DOP853 dense-output coefficients $D\_{ri}$, $r = 4, \dots, 7$, over all 16 stages.
 pub(crate) const DOP853_D: [[Real; 16]; 4] = [
     [
         -8.428938276109013,

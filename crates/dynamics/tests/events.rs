@@ -15,7 +15,7 @@ fn at_rest(r0: Real) -> TwoBodyState {
 }
 
 /// Radial fall from rest at r0 under μ = G(m_A + m_B): the time to reach r is
-/// $t = \sqrt{r_0^3/(2\mu)}\,[\sqrt{x(1-x)} + \arccos\sqrt x]$, $x = r/r_0$.
+/// $t = \sqrt{r_0^3/(2\mu)}\\,[\sqrt{x(1-x)} + \arccos\sqrt x]$, $x = r/r_0$.
 fn fall_time(r0: Real, r: Real, mu: Real) -> Real {
     let x = r / r0;
     (r0 * r0 * r0 / (2.0 * mu)).sqrt() * ((x * (1.0 - x)).sqrt() + x.sqrt().acos())

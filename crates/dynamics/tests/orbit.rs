@@ -79,8 +79,8 @@ fn paper_point_scene() {
 }
 
 /// $V = -\alpha/r - \beta/(2r^2)$: the relative orbit obeys $u'' + (1 - \epsilon/L^2)u = k/L^2$
-/// ($u = 1/r$, $k = \alpha/\mu_{red}$, $\epsilon = \beta/\mu_{red}$, $L = |\mathbf r\times\dot{\mathbf r}|$)
-/// exactly, so apsides advance by $\psi_p = 360°\,(1/\sqrt{1-\epsilon/L^2} - 1)$ per radial period
+/// ($u = 1/r$, $k = \alpha/\mu\_{red}$, $\epsilon = \beta/\mu\_{red}$, $L = |\mathbf r\times\dot{\mathbf r}|$)
+/// exactly, so apsides advance by $\psi_p = 360°\\,(1/\sqrt{1-\epsilon/L^2} - 1)$ per radial period
 /// at any eccentricity.
 #[test]
 fn inverse_cube_force_precession() {

@@ -509,7 +509,7 @@ fn libration_scene(size: Real, amplitude: Real) -> (EngineModel, TwoBodyState, R
 
 /// Small-amplitude libration of a triaxial secondary (semi-axes a > b > c) on a circular orbit
 /// about a sphere: the angle φ between its long axis and the line of centres oscillates at
-/// $\omega_\ell = n\sqrt{3(B - A)/C}$ in the limit of a small body far away (a/r → 0), with
+/// $\omega\_\ell = n\sqrt{3(B - A)/C}$ in the limit of a small body far away (a/r → 0), with
 /// A < B < C its principal moments. Measured from the zero crossings of φ.
 #[test]
 fn libration_frequency_tends_to_the_classical_limit() {

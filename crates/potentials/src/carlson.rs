@@ -18,7 +18,7 @@
 //! (x, y, z) \leftarrow \tfrac14 (x + \lambda, y + \lambda, z + \lambda)$$
 //! is symmetric in its arguments, so the three $R_D$ and $R_F$ share one sequence. Each step
 //! leaves $R_F$ unchanged and peels off one term of each $R_D$:
-//! $$R_D(x, y, z) = \frac{3}{\sqrt z\,(\sqrt z + \sqrt x)(\sqrt z + \sqrt y)} +
+//! $$R_D(x, y, z) = \frac{3}{\sqrt z\\,(\sqrt z + \sqrt x)(\sqrt z + \sqrt y)} +
 //!   \tfrac14 R_D(x', y', z')$$
 //! (using $z + \lambda = (\sqrt z + \sqrt x)(\sqrt z + \sqrt y)$). The three reciprocals of one
 //! step share a single division. The differences $x - y$, … shrink by exactly 4 per step; once
@@ -27,15 +27,15 @@
 //! common mean (DLMF §19.19): with $e_2 = Z_1Z_2 + Z_2Z_3 + Z_3Z_1$, $e_3 = Z_1Z_2Z_3$ and
 //! $\sum_N p_N t^N = (1 + e_2 t^2 - e_3 t^3)^{-1/2}$,
 //! $$R_F = \mu^{-1/2} \sum_N \frac{p_N}{2N + 1}, \qquad
-//! R_D(\cdot, \cdot, x_i) = \mu^{-3/2} \sum_N \frac{3\, c_N(Z_i)}{2N + 3}, \quad
-//! c_N = Z_i c_{N-1} + p_N,\ c_0 = 1,$$
+//! R_D(\cdot, \cdot, x_i) = \mu^{-3/2} \sum_N \frac{3\\, c_N(Z_i)}{2N + 3}, \quad
+//! c_N = Z_i c\_{N-1} + p_N,\ c_0 = 1,$$
 //! the second because the generating function of the $R_D$ terms is
 //! $(1 + e_2 t^2 - e_3 t^3)^{-1/2} (1 - Z_i t)^{-1}$ (the $R_D$ weights are $\tfrac12, \tfrac12,
 //! \tfrac32$ and the common mean does not cancel the first-order term). The $p_N$ follow from
 //! the differential equation of their generating function,
-//! $(N+1)p_{N+1} = -N e_2 p_{N-1} + (N - \tfrac12) e_3 p_{N-2}$. The series is cut after
+//! $(N+1)p\_{N+1} = -N e_2 p\_{N-1} + (N - \tfrac12) e_3 p\_{N-2}$. The series is cut after
 //! degree 11 (5, 7 when $|Z| \le 10^{-3}, 10^{-2}$): the truncation error, measured against
-//! mpmath, is $0.33\,|Z|^{12} \le 6\cdot 10^{-18}$. Unlike separate routines, the four series
+//! mpmath, is $0.33\\,|Z|^{12} \le 6\cdot 10^{-18}$. Unlike separate routines, the four series
 //! share one mean, one $\mu^{-1/2}$ and one set of $p_N$.
 //!
 //! Accuracy, against mpmath at 30 digits: within 3.8 ulp for all four on 2,000 random triples
@@ -58,7 +58,7 @@ pub struct SymmetricIntegrals {
 const SERIES_TERMS: usize = 12;
 
 /// Largest relative deviation from the mean at which the series takes over: the truncation
-/// error, measured against mpmath, is $0.33\,\tau^{12} = 5.5 \cdot 10^{-18}$.
+/// error, measured against mpmath, is $0.33\\,\tau^{12} = 5.5 \cdot 10^{-18}$.
 const SERIES_THRESHOLD: f64 = 0.04;
 
 /// $-N/(N+1)$ and $(N - \frac12)/(N+1)$: the recurrence of the $p_N$.
@@ -232,7 +232,7 @@ fn duplication<const SHARED_DIVISION: bool>(x: f64, y: f64, z: f64) -> Symmetric
 }
 
 /// The series of $R_F$ and of the three $R_D$ about the common mean, through degree $K - 1$:
-/// truncation $\approx 0.4\,|Z|^K$ (measured against mpmath), below $10^{-17}$ for
+/// truncation $\approx 0.4\\,|Z|^K$ (measured against mpmath), below $10^{-17}$ for
 /// $K = 6, 8, 12$ at $|Z| \le 10^{-3}, 10^{-2}, 0.04$.
 #[inline]
 fn series<const K: usize>(e2: f64, e3: f64, deviations: [f64; 3]) -> (f64, [f64; 3]) {

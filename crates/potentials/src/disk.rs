@@ -3,43 +3,43 @@
 //!
 //! # Potential
 //!
-//! $\Phi(\mathbf r) = -G\sigma \int_{\rho' \le R} \mathrm dA' / |\mathbf r - \mathbf r'|$, defined and
+//! $\Phi(\mathbf r) = -G\sigma \int\_{\rho' \le R} \mathrm dA' / |\mathbf r - \mathbf r'|$, defined and
 //! continuous everywhere, through the lamina and across the rim. In cylindrical coordinates
 //! $(\rho, z)$ scaled by $R$ (so the rim is $\rho = 1$), with
 //!
-//! $$S_\pm = \sqrt{(1 \pm \rho)^2 + z^2},\quad k_c = S_-/S_+ = \sqrt{1 - m},\quad
-//! m = \frac{4\rho}{S_+^2},\quad \sqrt{1 - n} = \frac{|1 - \rho|}{1 + \rho},\quad
+//! $$S\_\pm = \sqrt{(1 \pm \rho)^2 + z^2},\quad k_c = S\_-/S\_+ = \sqrt{1 - m},\quad
+//! m = \frac{4\rho}{S\_+^2},\quad \sqrt{1 - n} = \frac{|1 - \rho|}{1 + \rho},\quad
 //! n = \frac{4\rho}{(1+\rho)^2},$$
 //!
-//! summing rings of radius $s$ (each $\Phi = -G\,\mathrm dm\,(2/\pi) K(m_s) / S_+(s)$) gives the
+//! summing rings of radius $s$ (each $\Phi = -G\\,\mathrm dm\\,(2/\pi) K(m_s) / S\_+(s)$) gives the
 //! classical closed form
 //!
-//! $$\Phi = -2G\sigma R\Big[S_+ E(m) + \frac{1-\rho^2}{S_+}K(m) +
-//!   \frac{z^2 (1-\rho)}{(1+\rho) S_+}\Pi(n, m)\Big] + 2\pi G\sigma R\,|z|\,H(1-\rho),$$
+//! $$\Phi = -2G\sigma R\Big[S\_+ E(m) + \frac{1-\rho^2}{S\_+}K(m) +
+//!   \frac{z^2 (1-\rho)}{(1+\rho) S\_+}\Pi(n, m)\Big] + 2\pi G\sigma R\\,|z|\\,H(1-\rho),$$
 //!
 //! with $H$ the step function ($H(0) = 1/2$). The step and the jump of the $\Pi$ term at
 //! $\rho = 1$ cancel, so $\Phi$ is continuous at the rim. We evaluate it as
 //!
-//! $$\Phi = -2G\sigma R\,\frac{B\,(2 + 2\rho + z^2) + D\,(2 - 2\rho + z^2) +
-//!   z^2\,\mathrm{sgn}(1-\rho)\,P}{S_+} + 2\pi G\sigma R\,|z|\,H(1-\rho),
-//!   \qquad P = \sqrt{1-n}\;\Pi(n, m),$$
+//! $$\Phi = -2G\sigma R\\,\frac{B\\,(2 + 2\rho + z^2) + D\\,(2 - 2\rho + z^2) +
+//!   z^2\\,\mathrm{sgn}(1-\rho)\\,P}{S\_+} + 2\pi G\sigma R\\,|z|\\,H(1-\rho),
+//!   \qquad P = \sqrt{1-n}\\;\Pi(n, m),$$
 //!
 //! with $B$, $D$ and $P$ from [`crate::elliptic`] (all subtraction-free, $P$ finite as
-//! $\rho \to 1$). On the axis the bracket reduces to $\pi(S_+ - |z|)$, giving
+//! $\rho \to 1$). On the axis the bracket reduces to $\pi(S\_+ - |z|)$, giving
 //! $\Phi = -2\pi G\sigma(\sqrt{R^2 + z^2} - |z|)$.
 //!
 //! # Acceleration
 //!
 //! $\mathbf a = -\nabla\Phi$. The in-plane part comes from the rim (Gauss's theorem in the plane
-//! turns $\nabla_\parallel$ of the area integral into a line integral over the rim), and is a
+//! turns $\nabla\_\parallel$ of the area integral into a line integral over the rim), and is a
 //! positive integral with no cancellation:
 //!
-//! $$a_\rho = -16\,G\sigma\,\frac{\rho\,C(m)}{S_+^3},\qquad C = \frac{D - B}{m}.$$
+//! $$a\_\rho = -16\\,G\sigma\\,\frac{\rho\\,C(m)}{S\_+^3},\qquad C = \frac{D - B}{m}.$$
 //!
 //! The normal part is $G\sigma$ times the solid angle $\Omega$ the disk subtends:
 //!
-//! $$a_z = -\operatorname{sgn}(z)\,G\sigma\,\Omega,\qquad
-//! \Omega = 2\pi H(1-\rho) - \frac{2|z|}{S_+}\big[K(m) + \mathrm{sgn}(1-\rho)\,P\big].$$
+//! $$a_z = -\operatorname{sgn}(z)\\,G\sigma\\,\Omega,\qquad
+//! \Omega = 2\pi H(1-\rho) - \frac{2|z|}{S\_+}\big[K(m) + \mathrm{sgn}(1-\rho)\\,P\big].$$
 //!
 //! # Conventions on the lamina and at the rim
 //!
@@ -47,7 +47,7 @@
 //!   below to $-2\pi G\sigma$ above). We return the **average of the two sides**, $a_z = 0$, with
 //!   the in-plane components and $\Phi$, which are continuous there. The same rule gives
 //!   $a_z = 0$ in the plane outside the disk, where there is no jump.
-//! - **At the rim** ($\rho = R$, $z = 0$) $a_\rho$ diverges like
+//! - **At the rim** ($\rho = R$, $z = 0$) $a\_\rho$ diverges like
 //!   $-2G\sigma(\ln(8R/d) - 2)$ at a distance $d$ from it, on either side (R = M = G = 1:
 //!   −8.85 at $d = 10^{-6}R$, −14.71 at $10^{-10}R$). Exactly on the rim the in-plane
 //!   acceleration is returned as an infinity pointing to the axis ($-\infty$ times the sign of
@@ -64,15 +64,15 @@
 //! The closed form's terms are $O(r)$ while $\Phi = O(R^2/r)$: it loses about $(r/R)^2$ in
 //! relative precision. From $r \ge 2R$ we use the exterior expansion instead, exact for $r > R$:
 //!
-//! $$\Phi = -\frac{GM}{r}\sum_{l \ge 0} c_l \Big(\frac{R}{r}\Big)^{2l} P_{2l}(\cos\theta),\qquad
+//! $$\Phi = -\frac{GM}{r}\sum\_{l \ge 0} c_l \Big(\frac{R}{r}\Big)^{2l} P\_{2l}(\cos\theta),\qquad
 //! c_l = 2\binom{1/2}{l+1} = 1, -\tfrac14, \tfrac18, -\tfrac5{64}, \dots$$
 //!
 //! whose coefficients come from the on-axis potential
 //! $-2\pi G\sigma(\sqrt{R^2+z^2} - |z|) = -\frac{GM}{z}\sum_l c_l (R/z)^{2l}$. The quadrupole
-//! term is $+\frac{GMR^2}{4r^3}P_2(\cos\theta)$ (MacCullagh with $I_{zz} = MR^2/2$,
-//! $I_{xx} = I_{yy} = MR^2/4$). Its gradient uses
-//! $\partial_z (r^{-n-1}P_n) = -(n+1) r^{-n-2} P_{n+1}$ and
-//! $\partial_\rho (r^{-n-1}P_n) = -r^{-n-2}\sin\theta\,P'_{n+1}$. At $r = 2R$ the series needs 29
+//! term is $+\frac{GMR^2}{4r^3}P_2(\cos\theta)$ (MacCullagh with $I\_{zz} = MR^2/2$,
+//! $I\_{xx} = I\_{yy} = MR^2/4$). Its gradient uses
+//! $\partial_z (r^{-n-1}P_n) = -(n+1) r^{-n-2} P\_{n+1}$ and
+//! $\partial\_\rho (r^{-n-1}P_n) = -r^{-n-2}\sin\theta\\,P'\_{n+1}$. At $r = 2R$ the series needs 29
 //! terms; at $r = 10R$, 10; at $r = 10^8 R$, 3.
 //!
 //! # Accuracy
@@ -357,11 +357,11 @@ struct SeriesTables {
     coefficient: [Real; SERIES_TERMS],
     /// $2l + 1$ as a float.
     odd_degree: [Real; SERIES_TERMS],
-    /// $(2k+1)/(k+1)$: $P_{k+1} = a_k u P_k - b_k P_{k-1}$.
+    /// $(2k+1)/(k+1)$: $P\_{k+1} = a_k u P_k - b_k P\_{k-1}$.
     rec_a: [Real; 2 * SERIES_TERMS + 2],
     /// $k/(k+1)$.
     rec_b: [Real; 2 * SERIES_TERMS + 2],
-    /// $2k + 1$: $P'_{k+1} = P'_{k-1} + (2k+1) P_k$.
+    /// $2k + 1$: $P'\_{k+1} = P'\_{k-1} + (2k+1) P_k$.
     rec_c: [Real; 2 * SERIES_TERMS + 2],
 }
 

@@ -7,49 +7,49 @@
 //! Disks A and B (radii $R_A$, $R_B$, masses $m_A$, $m_B$) lie in one plane with their centres a
 //! distance $r \ge R_A + R_B$ apart. With $\alpha = R_A/r$, $\beta = R_B/r$ and
 //!
-//! $$k_\pm^2 = \frac{1 \pm (\alpha^2 - \beta^2) - \sqrt{\mathcal D}}{2},\qquad
+//! $$k\_\pm^2 = \frac{1 \pm (\alpha^2 - \beta^2) - \sqrt{\mathcal D}}{2},\qquad
 //! \mathcal D = \big(1 - (\alpha+\beta)^2\big)\big(1 - (\alpha-\beta)^2\big),$$
 //!
 //! the mutual potential energy and the radial force on B (along the unit vector from A to B) are
 //!
-//! $$V = -\frac{G m_A m_B}{r}\,u,\qquad F = -\frac{\mathrm dV}{\mathrm dr}
-//!   = -\frac{G m_A m_B}{r^2}\,f,$$
+//! $$V = -\frac{G m_A m_B}{r}\\,u,\qquad F = -\frac{\mathrm dV}{\mathrm dr}
+//!   = -\frac{G m_A m_B}{r^2}\\,f,$$
 //!
 //! both shape factors tending to 1 far away ($u = 1 + (R_A^2 + R_B^2)/(8r^2) + \dots$): $V < 0$,
 //! $F < 0$ (attraction). The paper prints $u$ correctly (its $U = -V$) but $f$ with the wrong
 //! sign: its expression tends to $-1$. The correct one is minus the printed one,
 //!
-//! $$f = \frac{8}{\pi^2 k_{c+}^2 k_{c-}^2}\Big[\tfrac13 \big(B_+ + 2k_{c+}^2 D_+\big)
-//!   \big(B_- + 2k_{c-}^2 D_-\big) - B_+ B_-\Big],$$
+//! $$f = \frac{8}{\pi^2 k\_{c+}^2 k\_{c-}^2}\Big[\tfrac13 \big(B\_+ + 2k\_{c+}^2 D\_+\big)
+//!   \big(B\_- + 2k\_{c-}^2 D\_-\big) - B\_+ B\_-\Big],$$
 //!
-//! with $K_\pm = K(k_\pm^2)$ etc. (parameter convention, see [`crate::elliptic`]) and
-//! $k_{c\pm}^2 = 1 - k_\pm^2$; $f = u - r\,\mathrm du/\mathrm dr$, which the tests check.
+//! with $K\_\pm = K(k\_\pm^2)$ etc. (parameter convention, see [`crate::elliptic`]) and
+//! $k\_{c\pm}^2 = 1 - k\_\pm^2$; $f = u - r\\,\mathrm du/\mathrm dr$, which the tests check.
 //!
 //! # Numerics
 //!
 //! Written in $K, E$ the printed $u$ loses digits as $(r/R)^2$ (1e-13 at $r = 30R$, 1e-10 at
 //! $r = 1000R$), and both factors lose $\ln(R_A/R_B)$ near contact when the radii differ. We use
 //! instead the subtraction-free integrals $B, C, D$ and $D - C$ of [`crate::elliptic`], the
-//! identities $k_+^2 k_{c-}^2 = \alpha^2$, $k_-^2 k_{c+}^2 = \beta^2$, and rearrangements in which
+//! identities $k\_+^2 k\_{c-}^2 = \alpha^2$, $k\_-^2 k\_{c+}^2 = \beta^2$, and rearrangements in which
 //! only small terms are subtracted (A is the larger disk; $u$ and $f$ are symmetric in A, B):
 //!
-//! $$\tfrac{\pi^2}{4}u = 2B_+K_- - \frac{2k_+^2k_-^2 B_- C_+}{k_{c-}^2} -
-//!   \xi^2 (1 + k_+^2) B_+ C_- - k_-^2 D_+ C_- +
-//!   \frac{k_+^2 \xi^2}{9 k_{c-}^2}\big(k_{c+}^2 C_+ + 2B_+\big)\big(k_{c-}^2 C_- + 2B_-\big),$$
-//! $$\tfrac{3\pi^2}{16}f = \frac{D_+ B_-}{k_{c-}^2} + 2D_+D_- - \xi^2 B_+\frac{D_- - C_-}{k_{c-}^2},
-//!   \qquad \xi^2 = \frac{k_-^2}{k_{c+}^2} = \frac{\beta^2}{k_{c+}^4}.$$
+//! $$\tfrac{\pi^2}{4}u = 2B\_+K\_- - \frac{2k\_+^2k\_-^2 B\_- C\_+}{k\_{c-}^2} -
+//!   \xi^2 (1 + k\_+^2) B\_+ C\_- - k\_-^2 D\_+ C\_- +
+//!   \frac{k\_+^2 \xi^2}{9 k\_{c-}^2}\big(k\_{c+}^2 C\_+ + 2B\_+\big)\big(k\_{c-}^2 C\_- + 2B\_-\big),$$
+//! $$\tfrac{3\pi^2}{16}f = \frac{D\_+ B\_-}{k\_{c-}^2} + 2D\_+D\_- - \xi^2 B\_+\frac{D\_- - C\_-}{k\_{c-}^2},
+//!   \qquad \xi^2 = \frac{k\_-^2}{k\_{c+}^2} = \frac{\beta^2}{k\_{c+}^4}.$$
 //!
 //! The moduli come without cancellation from the gap $g = r - R_A - R_B$:
-//! $k_+^2 = 2\alpha^2 / (1 + \alpha^2 - \beta^2 + \sqrt{\mathcal D})$,
-//! $k_-^2 = 2\beta^2 / (1 - \alpha^2 + \beta^2 + \sqrt{\mathcal D})$,
-//! $k_{c\pm}^2 = (1 \mp (\alpha^2 - \beta^2) + \sqrt{\mathcal D})/2$,
+//! $k\_+^2 = 2\alpha^2 / (1 + \alpha^2 - \beta^2 + \sqrt{\mathcal D})$,
+//! $k\_-^2 = 2\beta^2 / (1 - \alpha^2 + \beta^2 + \sqrt{\mathcal D})$,
+//! $k\_{c\pm}^2 = (1 \mp (\alpha^2 - \beta^2) + \sqrt{\mathcal D})/2$,
 //! $\mathcal D = \frac{g}{r}(1 + \alpha + \beta)\frac{g + 2R_B}{r}(1 + \alpha - \beta)$,
 //! $1 - \alpha^2 + \beta^2 = \frac{g + R_B}{r}\cdot\frac{r + R_A}{r} + \beta^2$, and so on.
 //!
 //! # Domain
 //!
 //! $r \ge R_A + R_B$. **Touching disks** ($r = R_A + R_B$ exactly) are accepted: the moduli stay
-//! below 1 ($k_+^2 = R_A/(R_A + R_B)$, $k_-^2 = R_B/(R_A+R_B)$), $V$ and $F$ are finite and
+//! below 1 ($k\_+^2 = R_A/(R_A + R_B)$, $k\_-^2 = R_B/(R_A+R_B)$), $V$ and $F$ are finite and
 //! continuous there (the first singular term of $V$ is $\propto g^{5/2}$). Overlapping disks,
 //! non-finite separations and, for the vector form, separations out of the common plane are
 //! typed errors.

@@ -8,10 +8,10 @@
 //! $$S(\lambda) = \sum_i \frac{x_i^2}{a_i^2 + \lambda} = 1$$
 //! outside the body, $\lambda = 0$ inside and on it. With $A_i = a_i^2 + \lambda$, Dirichlet's
 //! integral is
-//! $$\Phi = -\frac{3GM}{4} \int_\lambda^\infty \Bigl(1 - \sum_i \frac{x_i^2}{a_i^2 + u}\Bigr)
+//! $$\Phi = -\frac{3GM}{4} \int\_\lambda^\infty \Bigl(1 - \sum_i \frac{x_i^2}{a_i^2 + u}\Bigr)
 //!   \frac{\mathrm du}{\sqrt{(a_1^2 + u)(a_2^2 + u)(a_3^2 + u)}}
-//!   = -\frac{3GM}{2}\Bigl[R_F(A_1, A_2, A_3) - \frac13 \sum_i x_i^2\, R_D^{(i)}\Bigr],$$
-//! $$a_i = -\frac{\partial\Phi}{\partial x_i} = -GM\, x_i\, R_D^{(i)}, \qquad
+//!   = -\frac{3GM}{2}\Bigl[R_F(A_1, A_2, A_3) - \frac13 \sum_i x_i^2\\, R_D^{(i)}\Bigr],$$
+//! $$a_i = -\frac{\partial\Phi}{\partial x_i} = -GM\\, x_i\\, R_D^{(i)}, \qquad
 //!   R_D^{(i)} = R_D(A_j, A_k, A_i)$$
 //! (the third argument belongs to axis $i$). The derivative of the lower limit $\lambda$ drops
 //! out because the integrand vanishes at $u = \lambda$; inside, the same formula with
@@ -24,8 +24,8 @@
 //! $\sum_i A_i R_D^{(i)} = 3R_F$, turns the bracket into $\tfrac13 \sum_i (A_i - x_i^2)
 //! R_D^{(i)}$. Inside, $A_i - x_i^2 = (a_i - x_i)(a_i + x_i) > 0$, with the four integrals at
 //! $\lambda = 0$ computed once. Outside, the secular equation $\sum_j w_j = 1$ with
-//! $w_j = x_j^2/A_j$ gives $A_i - x_i^2 = A_i \sum_{j \ne i} w_j$:
-//! $$\Phi = -\frac{GM}{2} \sum_i A_i\, R_D^{(i)} \sum_{j \ne i} w_j,$$
+//! $w_j = x_j^2/A_j$ gives $A_i - x_i^2 = A_i \sum\_{j \ne i} w_j$:
+//! $$\Phi = -\frac{GM}{2} \sum_i A_i\\, R_D^{(i)} \sum\_{j \ne i} w_j,$$
 //! a sum of positive terms (the bracket itself loses up to a factor $\ln(c/a)$ at the tip of
 //! a needle).
 //!
@@ -377,7 +377,7 @@ pub(crate) fn excess_of(
 /// rounded ratios $(x_i/a_i)^2$.
 ///
 /// `inv_axes` need only approximate $1/a_i$: the exact remainder $x - \hat q a$ of the
-/// approximate quotient $\hat q$ restores the lost bits. Needs $|x_i| \lesssim 10^{150}\,a_i$
+/// approximate quotient $\hat q$ restores the lost bits. Needs $|x_i| \lesssim 10^{150}\\,a_i$
 /// (no overflow in Dekker's splitting).
 #[inline]
 fn surface_excess(x: &[Real; 3], axes: &[Real; 3], inv_axes: &[Real; 3]) -> (Real, [Real; 3]) {

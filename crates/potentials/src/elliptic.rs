@@ -10,8 +10,8 @@
 //! disk, $k_c$ is a ratio of two distances). With $\Delta(\theta) = \sqrt{1 - m \sin^2\theta}$:
 //!
 //! $$K(m) = \int_0^{\pi/2} \frac{\mathrm d\theta}{\Delta},\quad
-//! E(m) = \int_0^{\pi/2} \Delta\,\mathrm d\theta,\quad
-//! \Pi(n, m) = \int_0^{\pi/2} \frac{\mathrm d\theta}{(1 - n\sin^2\theta)\,\Delta},$$
+//! E(m) = \int_0^{\pi/2} \Delta\\,\mathrm d\theta,\quad
+//! \Pi(n, m) = \int_0^{\pi/2} \frac{\mathrm d\theta}{(1 - n\sin^2\theta)\\,\Delta},$$
 //!
 //! and the combinations that cancel in terms of $K$ and $E$ (Bulirsch's notation):
 //!
@@ -31,10 +31,10 @@
 //! # Method
 //!
 //! With $u = \cot\theta$ every integral above becomes
-//! $I = \int_0^\infty \frac{\alpha + \beta u^2}{w + u^2}\,\mathrm d\mu(u)$ with the measure
+//! $I = \int_0^\infty \frac{\alpha + \beta u^2}{w + u^2}\\,\mathrm d\mu(u)$ with the measure
 //! $\mathrm d\mu = \mathrm du / \sqrt{(u^2 + \mu^2)(u^2 + \nu^2)}$, $\mu = 1$, $\nu = k_c$:
 //! $B$ is $(\alpha, \beta, w) = (0, 1, 1)$, $D$ is $(1, 0, 1)$, $\Pi$ is $(1, 1, 1 - n)$ and
-//! $K = \pi / (2\,\mathrm{AGM}(1, k_c))$. The substitution $s = (u - q/u)/2$, $q = \mu\nu$, maps
+//! $K = \pi / (2\\,\mathrm{AGM}(1, k_c))$. The substitution $s = (u - q/u)/2$, $q = \mu\nu$, maps
 //! the pair $u, q/u$ to $\pm s$ and the measure to the same measure with
 //! $(\mu, \nu) \to ((\mu + \nu)/2, \sqrt q)$; the integrand keeps its form with
 //!
@@ -48,15 +48,15 @@
 //! equals $\mathrm du/(u^2 + M^2)$, $M = (\mu+\nu)/2$, to a relative $O(2^{-56})$, and
 //!
 //! $$\int_0^\infty \frac{\alpha + \beta u^2}{(w + u^2)(M^2 + u^2)}\mathrm du
-//! = \frac{\pi(\alpha + \beta M\sqrt w)}{2\sqrt w\, M (M + \sqrt w)}$$
+//! = \frac{\pi(\alpha + \beta M\sqrt w)}{2\sqrt w\\, M (M + \sqrt w)}$$
 //!
 //! closes the computation. Quadratic convergence: at most 4 steps for $k_c \ge 0.1$, 7 for
 //! $k_c = 10^{-9}$, 11 for $k_c = 10^{-150}$. Measured against the Carlson functions of `ellip`
 //! (themselves within a few ULP of mpmath) for $10^{-100} \le k_c \le 10^3$: at most 5 ULP in
-//! $K, B, D, E$ and 5.4 ULP in $\sqrt{1-n}\,\Pi$ (see the tests).
+//! $K, B, D, E$ and 5.4 ULP in $\sqrt{1-n}\\,\Pi$ (see the tests).
 //!
 //! $\Pi$ diverges as $(1 - n)^{-1/2}$ when $n \to 1$; [`complete_pi_scaled`] returns
-//! $\sqrt{1-n}\,\Pi(n, m)$, finite there, with the limit $\pi / (2 k_c)$ at $n = 1$.
+//! $\sqrt{1-n}\\,\Pi(n, m)$, finite there, with the limit $\pi / (2 k_c)$ at $n = 1$.
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -107,7 +107,7 @@ impl Track {
         self.beta = beta;
     }
 
-    /// $\int (\alpha + \beta u^2)/((w + u^2)(M^2 + u^2))\,\mathrm du$ without the factor
+    /// $\int (\alpha + \beta u^2)/((w + u^2)(M^2 + u^2))\\,\mathrm du$ without the factor
     /// $\pi / (2\sqrt w M (M + \sqrt w))$.
     #[inline(always)]
     fn numerator(&self, m_sqrt_w: f64) -> f64 {
@@ -182,7 +182,7 @@ pub fn complete_pi(n: f64, m: f64) -> Result<f64, EllipticError> {
     Ok(complete_pi_scaled(snc, kc)? / snc)
 }
 
-/// $\sqrt{1 - n}\;\Pi(n, m)$ from $\sqrt{1-n}$ and $k_c = \sqrt{1 - m}$: finite as $n \to 1$,
+/// $\sqrt{1 - n}\\;\Pi(n, m)$ from $\sqrt{1-n}$ and $k_c = \sqrt{1 - m}$: finite as $n \to 1$,
 /// where it tends to $\pi / (2 k_c)$ (returned for `sqrt_one_minus_n == 0`). Domain:
 /// $10^{-150} \le k_c \le 10^{150}$, $\sqrt{1-n} = 0$ or $10^{-150} \le \sqrt{1-n} \le 10^{150}$.
 pub fn complete_pi_scaled(sqrt_one_minus_n: f64, kc: f64) -> Result<f64, EllipticError> {
@@ -224,7 +224,7 @@ pub(crate) struct Gauss {
     pub c: f64,
     /// $D - C$.
     pub d_minus_c: f64,
-    /// $\sqrt{1-n}\,\Pi(n, m)$ if requested, else 0.
+    /// $\sqrt{1-n}\\,\Pi(n, m)$ if requested, else 0.
     pub pi_scaled: f64,
 }
 
@@ -241,7 +241,7 @@ impl Gauss {
     }
 }
 
-/// $K, B, D, C$ for the complementary modulus `kc`, and $\sqrt{1-n}\,\Pi(n, m)$ when
+/// $K, B, D, C$ for the complementary modulus `kc`, and $\sqrt{1-n}\\,\Pi(n, m)$ when
 /// `sqrt_one_minus_n` is given (it must be positive). No argument checks: `kc` and
 /// `sqrt_one_minus_n` must lie in $[10^{-150}, 10^{150}]$ (the callers in this crate guarantee
 /// it).

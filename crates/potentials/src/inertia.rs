@@ -1,10 +1,10 @@
 //! Mass properties: the inertia tensor of a rigid body about its centroid, in its body frame.
 //!
 //! For a homogeneous body of mass $m$ the inertia tensor about the centroid is
-//! $$\mathsf I = \int \rho\,\big(|\mathbf x|^2\,\mathsf 1 - \mathbf x\mathbf x^{\mathsf T}\big)\,\mathrm dV .$$
+//! $$\mathsf I = \int \rho\\,\big(|\mathbf x|^2\\,\mathsf 1 - \mathbf x\mathbf x^{\mathsf T}\big)\\,\mathrm dV .$$
 //! The built-in bodies have it in closed form (body frame = principal axes):
 //! - solid ellipsoid with semi-axes $a, b, c$ (sphere and spheroids included):
-//!   $\mathsf I = \tfrac m5\,\mathrm{diag}(b^2+c^2,\ a^2+c^2,\ a^2+b^2)$;
+//!   $\mathsf I = \tfrac m5\\,\mathrm{diag}(b^2+c^2,\ a^2+c^2,\ a^2+b^2)$;
 //! - uniform disk of radius $R$ in the x–y plane:
 //!   $\mathsf I = \mathrm{diag}(mR^2/4,\ mR^2/4,\ mR^2/2)$;
 //! - a point mass has none: it cannot rotate.
@@ -43,16 +43,16 @@ pub enum InertiaError {
         /// The entry.
         value: Real,
     },
-    /// $I_{ij} \ne I_{ji}$.
+    /// $I\_{ij} \ne I\_{ji}$.
     #[error("the inertia tensor is not symmetric: I[{row}][{column}] = {upper:e} but I[{column}][{row}] = {lower:e}")]
     NotSymmetric {
         /// Row of the upper entry.
         row: usize,
         /// Column of the upper entry.
         column: usize,
-        /// $I_{ij}$.
+        /// $I\_{ij}$.
         upper: Real,
-        /// $I_{ji}$.
+        /// $I\_{ji}$.
         lower: Real,
     },
     /// A principal moment is zero or negative.
@@ -156,7 +156,7 @@ impl InertiaTensor {
         })
     }
 
-    /// $\tfrac m5\,\mathrm{diag}(b^2+c^2, a^2+c^2, a^2+b^2)$: a homogeneous solid ellipsoid of
+    /// $\tfrac m5\\,\mathrm{diag}(b^2+c^2, a^2+c^2, a^2+b^2)$: a homogeneous solid ellipsoid of
     /// mass `mass` and semi-axes `a`, `b`, `c` along the body x, y, z axes.
     ///
     /// # Errors
@@ -217,8 +217,8 @@ mod tests {
         assert_eq!(d.principal_moments(), Vec3::new(1.0, 1.0, 2.0));
     }
 
-    /// Brute force: $\int\rho(|x|^2\mathsf 1 - xx^T)\,dV$ in scaled spherical coordinates
-    /// $x = (a\,r\sin\theta\cos\phi, b\,r\sin\theta\sin\phi, c\,r\cos\theta)$ with
+    /// Brute force: $\int\rho(|x|^2\mathsf 1 - xx^T)\\,dV$ in scaled spherical coordinates
+    /// $x = (a\\,r\sin\theta\cos\phi, b\\,r\sin\theta\sin\phi, c\\,r\cos\theta)$ with
     /// Gauss rules exact for the polynomial integrands (3 points in r, 3 in cos θ, 8 in φ), so
     /// the sum agrees with the closed form to rounding.
     #[test]

@@ -5,7 +5,7 @@
 //!
 //! These hold for every type in this crate (the founding paper mixes signs; we do not):
 //!
-//! - **Potential** $\Phi(\mathbf r) = -G \int \rho\, \mathrm dV' / |\mathbf r - \mathbf r'|$: negative,
+//! - **Potential** $\Phi(\mathbf r) = -G \int \rho\\, \mathrm dV' / |\mathbf r - \mathbf r'|$: negative,
 //!   tending to $-GM/r$ far away (as in galpy, gala and REBOUND).
 //! - **Acceleration** $\mathbf a = -\nabla\Phi$: the acceleration of a test particle, pointing toward
 //!   the body.

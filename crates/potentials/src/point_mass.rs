@@ -1,4 +1,4 @@
-//! A point mass: $\Phi = -GM/r$, $\mathbf a = -GM\,\mathbf r / r^3$.
+//! A point mass: $\Phi = -GM/r$, $\mathbf a = -GM\\,\mathbf r / r^3$.
 //!
 //! Also the far-field limit every solid falls back to beyond $10^{20}$ body sizes, where the
 //! quadrupole is below $10^{-40}$ of the monopole.
@@ -73,7 +73,7 @@ impl Potential for PointMass {
     }
 }
 
-/// $-GM/r$ and $-GM\,\hat{\mathbf r}/r^2$, without spurious overflow or underflow of $r^2$ or
+/// $-GM/r$ and $-GM\\,\hat{\mathbf r}/r^2$, without spurious overflow or underflow of $r^2$ or
 /// $r^3$ for any finite `r`; at `r = 0`, $-\infty$ and a zero acceleration.
 #[inline]
 pub(crate) fn kepler_field(gm: Real, r: &Vec3) -> Field {

@@ -16,14 +16,14 @@
 //!   = -G\rho \sum_f \mathbf n_f I_f .$$
 //! The face integral, by the divergence theorem in the face's plane with
 //! $\nabla_2\cdot[(\mathbf x - \mathbf p')(R - |h|)/\rho^2] = 1/R$:
-//! $$I_f = \sum_{e\in f} d_{fe} L_e - h_f\,\omega_f,\qquad
-//!   L_e = \ln\frac{r_i + r_j + e_{ij}}{r_i + r_j - e_{ij}},\qquad
-//!   \omega_f = 2\,\mathrm{atan2}\bigl(2A_f h_f,\;
-//!   r_1r_2r_3 + r_1\,\mathbf r_2\cdot\mathbf r_3 + r_2\,\mathbf r_3\cdot\mathbf r_1 +
-//!   r_3\,\mathbf r_1\cdot\mathbf r_2\bigr),$$
-//! with $\mathbf r_i = \mathbf v_i - \mathbf p$, $d_{fe} = \mathbf m_{fe}\cdot(\mathbf v_i -
+//! $$I_f = \sum\_{e\in f} d\_{fe} L_e - h_f\\,\omega_f,\qquad
+//!   L_e = \ln\frac{r_i + r_j + e\_{ij}}{r_i + r_j - e\_{ij}},\qquad
+//!   \omega_f = 2\\,\mathrm{atan2}\bigl(2A_f h_f,\\;
+//!   r_1r_2r_3 + r_1\\,\mathbf r_2\cdot\mathbf r_3 + r_2\\,\mathbf r_3\cdot\mathbf r_1 +
+//!   r_3\\,\mathbf r_1\cdot\mathbf r_2\bigr),$$
+//! with $\mathbf r_i = \mathbf v_i - \mathbf p$, $d\_{fe} = \mathbf m\_{fe}\cdot(\mathbf v_i -
 //! \mathbf p)$ the distance from $\mathbf p$'s projection to edge $e$ along the edge's outward
-//! in-plane normal $\mathbf m_{fe}$, and $\omega_f$ the signed solid angle of $f$ seen from
+//! in-plane normal $\mathbf m\_{fe}$, and $\omega_f$ the signed solid angle of $f$ seen from
 //! $\mathbf p$ (van Oosterom & Strackee 1983; the triple product $\mathbf r_1\cdot(\mathbf r_2
 //! \times\mathbf r_3) = 2A_f h_f$ exactly). Werner & Scheeres write the same sums with the edge
 //! dyads $\mathsf E_e$ and face dyads $\mathsf F_f$ and a positive potential $U = -\Phi$.
@@ -31,13 +31,13 @@
 //! # Numerics
 //!
 //! - **Singular limits.** On a face's plane $h_f = 0$ and $\omega_f$'s jump of $4\pi$ is
-//!   multiplied by zero. $L_e$ diverges on edge $e$ itself, where its factor $d_{fe}$ vanishes
-//!   like $\rho\ln\rho$; there $r_i + r_j - e_{ij}$ is computed without cancellation as
+//!   multiplied by zero. $L_e$ diverges on edge $e$ itself, where its factor $d\_{fe}$ vanishes
+//!   like $\rho\ln\rho$; there $r_i + r_j - e\_{ij}$ is computed without cancellation as
 //!   $2|\mathbf r_i\times\mathbf r_j|^2 / ((r_ir_j - \mathbf r_i\cdot\mathbf r_j)(r_i + r_j +
-//!   e_{ij}))$ whenever $\mathbf r_i\cdot\mathbf r_j < 0$, and exactly on the edge (or at a
+//!   e\_{ij}))$ whenever $\mathbf r_i\cdot\mathbf r_j < 0$, and exactly on the edge (or at a
 //!   vertex) the term is its limit 0. So Φ and **a** are continuous across and on faces, edges
 //!   and vertices, and finite everywhere.
-//! - **Far field.** Each $I_f \approx A_f/r$ comes from edge terms of size $e\,$ that cancel, and
+//! - **Far field.** Each $I_f \approx A_f/r$ comes from edge terms of size $e\\,$ that cancel, and
 //!   the sum over faces cancels again to $V/r$: the rounding error grows like
 //!   $\varepsilon (r/R)^2$. Beyond [`FAR_FIELD_RADII`] circumscribing radii $R$ (about the
 //!   centroid) the field is the exterior multipole expansion instead, with moments exact to
@@ -442,7 +442,7 @@ fn half_solid_angle(num: Real, den: Real) -> Real {
 }
 
 /// $L_e$ for an edge of `length` seen from the point with offsets `a`, `b` (x, y, z, norm) to
-/// its ends; its limit 0 on the edge itself (where its factor $d_{fe}$ vanishes).
+/// its ends; its limit 0 on the edge itself (where its factor $d\_{fe}$ vanishes).
 #[inline]
 fn edge_log(a: &[Real; 4], b: &[Real; 4], length: Real) -> Real {
     let s = a[3] + b[3];

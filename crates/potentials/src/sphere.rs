@@ -1,10 +1,10 @@
 //! The homogeneous sphere of radius $R$ and mass $M$:
 //!
-//! $$\Phi(r) = \begin{cases} -\dfrac{GM}{r}, & r \ge R,\\
-//!   -\dfrac{GM\,(3R^2 - r^2)}{2R^3}, & r \le R, \end{cases}
+//! $$\Phi(r) = \begin{cases} -\dfrac{GM}{r}, & r \ge R,\\\\
+//!   -\dfrac{GM\\,(3R^2 - r^2)}{2R^3}, & r \le R, \end{cases}
 //! \qquad
-//! \mathbf a = \begin{cases} -\dfrac{GM\,\mathbf r}{r^3}, & r \ge R,\\
-//!   -\dfrac{GM\,\mathbf r}{R^3}, & r \le R. \end{cases}$$
+//! \mathbf a = \begin{cases} -\dfrac{GM\\,\mathbf r}{r^3}, & r \ge R,\\\\
+//!   -\dfrac{GM\\,\mathbf r}{R^3}, & r \le R. \end{cases}$$
 //!
 //! Both pieces agree on the surface (value and gradient); inside, $\nabla^2\Phi = 4\pi G\rho$
 //! with $\rho = 3M/(4\pi R^3)$. Valid at every finite point.

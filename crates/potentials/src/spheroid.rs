@@ -13,20 +13,20 @@
 //! $$R_F(A, A, C) = R_C(C, A) = \frac{g(q)}{\sqrt C}, \qquad
 //!   g(q) = \frac{\arctan\sqrt q}{\sqrt q} \ (q > 0), \quad
 //!   \frac{\operatorname{artanh}\sqrt{-q}}{\sqrt{-q}} \ (q < 0), \quad
-//!   \sum_{n \ge 0} \frac{(-q)^n}{2n + 1},$$
+//!   \sum\_{n \ge 0} \frac{(-q)^n}{2n + 1},$$
 //! $$\tfrac23 R_D(A, A, C) = \frac{2h(q)}{C^{3/2}}, \qquad
-//!   h(q) = \frac{1 - g(q)}{q} = \sum_{n \ge 0} \frac{(-q)^n}{2n + 3},$$
+//!   h(q) = \frac{1 - g(q)}{q} = \sum\_{n \ge 0} \frac{(-q)^n}{2n + 3},$$
 //! the latter by partial fractions, $\frac{1}{(t+C)(t+A)} = \frac{1}{d}\bigl(\frac1{t+C} -
 //! \frac1{t+A}\bigr)$. DLMF §19.21, $2R_D(A, C, A) + R_D(A, A, C) = 3/(A\sqrt C)$, then gives
 //! $$\tfrac23 R_D(A, C, A) = \frac{m(q)}{C^{3/2}}, \qquad m(q) = \frac{1}{1 + q} - h(q).$$
 //! Hence, with $s = C^{-1/2}$:
-//! $$a_{x,y} = -\tfrac32\, GM\, m\, s^3\, (x, y), \qquad a_z = -3\,GM\, h\, s^3\, z.$$
+//! $$a\_{x,y} = -\tfrac32\\, GM\\, m\\, s^3\\, (x, y), \qquad a_z = -3\\,GM\\, h\\, s^3\\, z.$$
 //! For the potential we use the ellipsoid's cancellation-free forms. Inside ($\kappa = 0$),
 //! $$\Phi = -\frac{GM}{2}\Bigl[\bigl((a-x)(a+x) + (a-y)(a+y)\bigr) R_D(a^2, c^2, a^2) +
-//!   (c - z)(c + z)\, R_D(a^2, a^2, c^2)\Bigr],$$
+//!   (c - z)(c + z)\\, R_D(a^2, a^2, c^2)\Bigr],$$
 //! with both constants computed once. Outside, where the secular equation
-//! $w_\rho + w_z = 1$ holds with $w_\rho = \rho^2/A$, $w_z = z^2/C$ (and $(1+q)m = g - h$):
-//! $$\Phi = -\tfrac34\, GM\, s\,\bigl[(g - h)(1 + w_z) + 2h\, w_\rho\bigr],$$
+//! $w\_\rho + w_z = 1$ holds with $w\_\rho = \rho^2/A$, $w_z = z^2/C$ (and $(1+q)m = g - h$):
+//! $$\Phi = -\tfrac34\\, GM\\, s\\,\bigl[(g - h)(1 + w_z) + 2h\\, w\_\rho\bigr],$$
 //! a sum of positive terms ($g > h > 0$ for every $q > -1$). Far away $g \to 1$, $h \to 1/3$
 //! and $\Phi \to -GM/r$; the quadrupole is $J_2 = (a^2 - c^2)/(5a^2)$.
 //!
@@ -47,8 +47,8 @@
 //!   $\tanh$) of half of $\arctan\sqrt q$ (or $\operatorname{artanh}\sqrt{-q}$), i.e.
 //!   $\nu = \pm u^2 = d/(\sqrt A + \sqrt C)^2$ and $w = 1 \mp u^2 = 2\sqrt C/(\sqrt A +
 //!   \sqrt C)$, the doubling formula $\sqrt{|q|} = 2u/w$ turns $h$ into
-//!   $$h = \tfrac14 w^2 \bigl[1 + w\, T(\nu)\bigr], \qquad
-//!   T(\nu) = \sum_{n \ge 0} \frac{(-\nu)^n}{2n + 3}, \qquad g = 1 - q h,$$
+//!   $$h = \tfrac14 w^2 \bigl[1 + w\\, T(\nu)\bigr], \qquad
+//!   T(\nu) = \sum\_{n \ge 0} \frac{(-\nu)^n}{2n + 3}, \qquad g = 1 - q h,$$
 //!   with $|\nu| \le 0.3$ (at most 32 terms, by Estrin's scheme). Beyond that range $g$ from
 //!   `atan` or `ln` loses at most a factor 2 in $1 - g$ (measured: $h$ within 3 ulp).
 //! - **Large $q$** (close to a flat body): $m = (g - C/A)/q$ instead of $C/A - h$.
@@ -382,7 +382,7 @@ impl ScaledSpheroid {
     }
 }
 
-/// $T(\nu) = \sum_{n \ge 0} (-\nu)^n/(2n + 3)$ for $|\nu| \le 0.3$, to within
+/// $T(\nu) = \sum\_{n \ge 0} (-\nu)^n/(2n + 3)$ for $|\nu| \le 0.3$, to within
 /// $10^{-17}$ relative.
 #[inline]
 fn half_angle_series(nu: Real) -> Real {

@@ -9,8 +9,8 @@
 //! (correctly rounded), so the reference and the code evaluate at the same point.
 //!
 //! For each case the test measures
-//! $|\Phi - \Phi_\mathrm{ref}| / |\Phi_\mathrm{ref}|$ and
-//! $\lVert\mathbf a - \mathbf a_\mathrm{ref}\rVert / \lVert\mathbf a_\mathrm{ref}\rVert$ and
+//! $|\Phi - \Phi\_\mathrm{ref}| / |\Phi\_\mathrm{ref}|$ and
+//! $\lVert\mathbf a - \mathbf a\_\mathrm{ref}\rVert / \lVert\mathbf a\_\mathrm{ref}\rVert$ and
 //! holds them to [`tolerance::POTENTIAL_REL`] and [`tolerance::ACCELERATION_REL`], outside,
 //! inside a solid and on a disk's lamina alike. One test per body kind; each prints the worst
 //! case per shape (`cargo test -p surfgrav-potentials --test reference_values -- --nocapture`)

@@ -736,8 +736,8 @@ enum Shape {
 }
 
 /// One body, one point, and the field there from
-/// $\Phi = -\tfrac34 GM \int_\lambda^\infty (1 - \sum x_i^2/(a_i^2 + u))\, \mathrm du /
-/// \sqrt{\prod (a_i^2 + u)}$ and $a_i = -\tfrac32 GM x_i \int_\lambda^\infty \mathrm du /
+/// $\Phi = -\tfrac34 GM \int\_\lambda^\infty (1 - \sum x_i^2/(a_i^2 + u))\\, \mathrm du /
+/// \sqrt{\prod (a_i^2 + u)}$ and $a_i = -\tfrac32 GM x_i \int\_\lambda^\infty \mathrm du /
 /// ((a_i^2 + u)\sqrt{\prod(a_j^2 + u)})$, evaluated with mpmath 1.3 (`quad`, tanh-sinh, 36
 /// digits, λ by bisection and Newton at 36 digits, quadrature error estimates below 1e-37)
 /// at the exact binary values of the inputs, then rounded to the nearest f64. The points are

@@ -1,6 +1,6 @@
 //! Globally adaptive cubature of vector-valued integrands over a rectangle.
 //!
-//! Computes $\mathbf I = \int_{v_0}^{v_1}\!\int_{u_0}^{u_1} \mathbf f(u, v)\,\mathrm du\,\mathrm dv$
+//! Computes $\mathbf I = \int\_{v_0}^{v_1}\\!\int\_{u_0}^{u_1} \mathbf f(u, v)\\,\mathrm du\\,\mathrm dv$
 //! for $\mathbf f$ with `N` components evaluated together (force, torque and energy of a surface
 //! integral in one pass), to a requested tolerance, with an error estimate, the number of
 //! integrand evaluations, and a [`Termination`] that says whether the tolerance was met.
@@ -9,16 +9,16 @@
 //!
 //! **Rule on a rectangle.** The product of the G7–K15 pair ([`crate::gauss_kronrod`]) mapped to
 //! the rectangle: $15 \times 15 = 225$ evaluations give four estimates from the same values,
-//! $Q_{KK}$ (Kronrod in both directions, degree 23 in each variable), $Q_{GK}$ (Gauss in $u$,
-//! Kronrod in $v$), $Q_{KG}$ and $Q_{GG}$. The rectangle's value is $Q_{KK}$; per component,
-//! with $s = Q_{KK}[|f - \bar f|]$ the spread of the integrand about its mean,
-//! $$e_u = |Q_{KK} - Q_{GK}|, \quad e_v = |Q_{KK} - Q_{KG}|, \quad
-//! r = \max\bigl(|Q_{KK} - Q_{GG}|,\; e_u + e_v\bigr),$$
-//! $$e = \max\Bigl(r,\; s \min\bigl(1, (200\, r/s)^{3/2}\bigr),\; 50\,\epsilon\, Q_{KK}[|f|]\Bigr).$$
+//! $Q\_{KK}$ (Kronrod in both directions, degree 23 in each variable), $Q\_{GK}$ (Gauss in $u$,
+//! Kronrod in $v$), $Q\_{KG}$ and $Q\_{GG}$. The rectangle's value is $Q\_{KK}$; per component,
+//! with $s = Q\_{KK}[|f - \bar f|]$ the spread of the integrand about its mean,
+//! $$e_u = |Q\_{KK} - Q\_{GK}|, \quad e_v = |Q\_{KK} - Q\_{KG}|, \quad
+//! r = \max\bigl(|Q\_{KK} - Q\_{GG}|,\\; e_u + e_v\bigr),$$
+//! $$e = \max\Bigl(r,\\; s \min\bigl(1, (200\\, r/s)^{3/2}\bigr),\\; 50\\,\epsilon\\, Q\_{KK}[|f|]\Bigr).$$
 //! $r$ estimates the error of the degree-13 Gauss product, while the degree-23 Kronrod product
 //! is returned: for smooth integrands the estimate exceeds the true error by orders of magnitude
 //! (measured: the true error is below $10^{-2}$ of the estimate on every test integrand).
-//! QUADPACK's $s\,(200 r/s)^{3/2}$ is used only to *raise* $r$, when the rules are not yet in
+//! QUADPACK's $s\\,(200 r/s)^{3/2}$ is used only to *raise* $r$, when the rules are not yet in
 //! their asymptotic regime ($r/s > 3.5 \times 10^{-7}$), where two rules can agree by
 //! accident; it is never allowed to lower $r$, which is where it can be optimistic. The last
 //! term is a floor for the rounding of the 225-term sums.
@@ -47,12 +47,12 @@
 //! priority queue holds the rectangles by error; the worst one is bisected, along $u$ if its
 //! $e_u$ exceeds its $e_v$ (largest component of each) and along $v$ otherwise, until the total
 //! error meets the tolerance, the evaluation budget would be exceeded, or no rectangle can be
-//! improved (its width along the chosen direction is below $1024\,\epsilon$ times its
+//! improved (its width along the chosen direction is below $1024\\,\epsilon$ times its
 //! coordinates, or its error is at the rounding floor, which bisection cannot lower).
 //!
-//! **Vector norm.** The error of the result is the vector $\mathbf E = \sum_{\text{rectangles}}
+//! **Vector norm.** The error of the result is the vector $\mathbf E = \sum\_{\text{rectangles}}
 //! \mathbf e$ (component by component); the integration has converged when
-//! $$\max_i E_i \le \max\bigl(\tau_{\text{abs}},\; \tau_{\text{rel}} \max_i |I_i|\bigr),$$
+//! $$\max_i E_i \le \max\bigl(\tau\_{\text{abs}},\\; \tau\_{\text{rel}} \max_i |I_i|\bigr),$$
 //! i.e. the tolerance is relative to the **largest component**. A component that vanishes by
 //! symmetry (a torque about a symmetry axis) is thus computed to the accuracy of the others
 //! instead of driving the integrator to an unreachable relative accuracy; integrands whose
@@ -96,10 +96,10 @@ const MINIMUM_RELATIVE_WIDTH: f64 = 1024.0 * f64::EPSILON;
 /// What the adaptive integrator is asked to achieve, and the most it may spend.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AdaptiveOptions {
-    /// Requested relative accuracy $\tau_{\text{rel}}$, relative to the largest component of the
+    /// Requested relative accuracy $\tau\_{\text{rel}}$, relative to the largest component of the
     /// integral (non-negative; `0` to use the absolute tolerance alone).
     pub relative_tolerance: f64,
-    /// Requested absolute accuracy $\tau_{\text{abs}}$, in the units of the integral
+    /// Requested absolute accuracy $\tau\_{\text{abs}}$, in the units of the integral
     /// (non-negative; `0` to use the relative tolerance alone).
     pub absolute_tolerance: f64,
     /// The most integrand evaluations one integration may use (at least
@@ -324,7 +324,7 @@ impl<const N: usize> AdaptiveCubature<N> {
         })
     }
 
-    /// $\max(\tau_{\text{abs}}, \tau_{\text{rel}} \max_i |I_i|)$.
+    /// $\max(\tau\_{\text{abs}}, \tau\_{\text{rel}} \max_i |I_i|)$.
     fn target(&self, value: &[f64; N]) -> f64 {
         self.options
             .absolute_tolerance
@@ -349,7 +349,7 @@ impl<const N: usize> AdaptiveCubature<N> {
 }
 
 /// QUADPACK's widening of an embedded-rule error estimate $e$ given the spread
-/// $s = Q[|f - \bar f|]$: $s \min(1, (200\, e/s)^{3/2})$. Used only to *raise* estimates: it
+/// $s = Q[|f - \bar f|]$: $s \min(1, (200\\, e/s)^{3/2})$. Used only to *raise* estimates: it
 /// exceeds $e$ when $e/s > 3.5 \times 10^{-7}$, i.e. before the rules reach their asymptotic
 /// regime, where two rules can agree by accident.
 fn widened(error: f64, spread: f64) -> f64 {
@@ -456,7 +456,7 @@ struct Region<const N: usize> {
     value: [f64; N],
     /// The error estimate in force: the rule's, possibly raised by validation.
     error: [f64; N],
-    /// The rounding floor $50\epsilon\,Q_{KK}[|f|]$ of each component.
+    /// The rounding floor $50\epsilon\\,Q\_{KK}[|f|]$ of each component.
     roundoff: [f64; N],
     /// $\max_i e_i$: the priority in the queue.
     error_norm: f64,

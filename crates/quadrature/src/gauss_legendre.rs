@@ -2,7 +2,7 @@
 //!
 //! The $n$-point rule on $[-1, 1]$ has as nodes the roots $x_1 > \dots > x_n$ of the Legendre
 //! polynomial $P_n$ and the weights
-//! $$w_k = \frac{2}{(1 - x_k^2)\,P_n'(x_k)^2} = \frac{2}{\bigl(\mathrm dP_n(\cos\theta)/\mathrm d\theta\bigr)^2_{\theta=\theta_k}},
+//! $$w_k = \frac{2}{(1 - x_k^2)\\,P_n'(x_k)^2} = \frac{2}{\bigl(\mathrm dP_n(\cos\theta)/\mathrm d\theta\bigr)^2\_{\theta=\theta_k}},
 //! \qquad x_k = \cos\theta_k,$$
 //! and integrates every polynomial of degree $\le 2n - 1$ exactly. On $[a, b]$ the nodes are
 //! $m + h x_k$ and the weights $h w_k$, with $m = (a + b)/2$ and $h = (b - a)/2$.
@@ -10,13 +10,13 @@
 //! # Algorithm
 //!
 //! Only the $\lceil n/2 \rceil$ non-negative roots are computed; the rule is symmetric
-//! ($x_{n+1-k} = -x_k$, equal weights) by construction, and $x = 0$ is a node of weight
-//! $2/(n P_{n-1}(0))^2$ when $n$ is odd. Each root starts from the asymptotic estimate
+//! ($x\_{n+1-k} = -x_k$, equal weights) by construction, and $x = 0$ is a node of weight
+//! $2/(n P\_{n-1}(0))^2$ when $n$ is odd. Each root starts from the asymptotic estimate
 //! (Tricomi; Szegő, *Orthogonal Polynomials*, §6.3)
-//! $$\theta_k \approx \psi_k + \frac{\cot\psi_k}{8\,(n + \tfrac12)^2}, \qquad
-//! \psi_k = \frac{(k - \tfrac14)\,\pi}{n + \tfrac12},$$
+//! $$\theta_k \approx \psi_k + \frac{\cot\psi_k}{8\\,(n + \tfrac12)^2}, \qquad
+//! \psi_k = \frac{(k - \tfrac14)\\,\pi}{n + \tfrac12},$$
 //! and is polished by Newton's method on $P_n$, evaluated by its three-term recurrence
-//! $(k+1) P_{k+1} = (2k+1)\,x P_k - k P_{k-1}$ ($O(n)$ per evaluation, $O(n^2)$ per rule).
+//! $(k+1) P\_{k+1} = (2k+1)\\,x P_k - k P\_{k-1}$ ($O(n)$ per evaluation, $O(n^2)$ per rule).
 //!
 //! Where the rounding of $x$ would spoil the result, the work is done in a better variable:
 //!
@@ -25,18 +25,18 @@
 //!   $\epsilon/\delta$ in $1 - x$, and the weight formula in $x$ amplifies that error by
 //!   $2x/(1 - x^2) \sim n^2$ near the ends. Here $t = 1 - x = 2\sin^2(\theta/2)$ is formed to
 //!   full relative precision and $P_n$ is evaluated by Reinsch's form of the recurrence for
-//!   $D_k = P_k - P_{k-1}$:
-//!   $$(k+1)\,D_{k+1} = k D_k - (2k+1)\,t P_k, \qquad P_{k+1} = P_k + D_{k+1},$$
-//!   $P_1 = 1 - t$, $D_1 = -t$, with $\mathrm dP_n/\mathrm d\theta = -n\,(t P_n - D_n)/\sin\theta$.
+//!   $D_k = P_k - P\_{k-1}$:
+//!   $$(k+1)\\,D\_{k+1} = k D_k - (2k+1)\\,t P_k, \qquad P\_{k+1} = P_k + D\_{k+1},$$
+//!   $P_1 = 1 - t$, $D_1 = -t$, with $\mathrm dP_n/\mathrm d\theta = -n\\,(t P_n - D_n)/\sin\theta$.
 //! - **Roots with $x \le 1/2$** are found in $x$ itself (a node near $0$ has full relative
-//!   precision as a float), with $P_n'(x) = n\,(x P_n - P_{n-1})/(x^2 - 1)$.
+//!   precision as a float), with $P_n'(x) = n\\,(x P_n - P\_{n-1})/(x^2 - 1)$.
 //!
 //! **Last step in twice the precision.** The rounding errors of the recurrence accumulate like
-//! $\sqrt n\,\epsilon$ (about 80 ULP in the weights at $n = 1000$ in plain arithmetic). So, once
-//! Newton has converged to $10^{-12}$, $P_n$ and $P_{n-1}$ (or $D_n$) are evaluated once more
+//! $\sqrt n\\,\epsilon$ (about 80 ULP in the weights at $n = 1000$ in plain arithmetic). So, once
+//! Newton has converged to $10^{-12}$, $P_n$ and $P\_{n-1}$ (or $D_n$) are evaluated once more
 //! by a *compensated* recurrence, in which every rounding error is captured by an error-free
 //! transformation and carried in a second sequence (as Graillat, Langlois and Louvet's
-//! compensated Horner scheme). With $g = P_{n-1} - x P_n$ and $s = 1 - x^2$ (in $t$:
+//! compensated Horner scheme). With $g = P\_{n-1} - x P_n$ and $s = 1 - x^2$ (in $t$:
 //! $g = tP_n - D_n$, $s = t(2 - t)$), all in double-double arithmetic, the last Newton step is
 //! $\delta x = -P_n s/(n g)$, and the weight $F(x) = 2 s/(n g)^2$, computed at the float $x$, is
 //! moved to the root $x + \delta x$ by its logarithmic derivative,
@@ -246,7 +246,7 @@ fn padded(chunk: &[f64]) -> [f64; LANES] {
 }
 
 /// The coefficients of the recurrence, $k = 1, \dots, n-1$:
-/// $P_{k+1} = \alpha_k x P_k - \beta_k P_{k-1}$ with $\alpha_k = (2k+1)/(k+1)$,
+/// $P\_{k+1} = \alpha_k x P_k - \beta_k P\_{k-1}$ with $\alpha_k = (2k+1)/(k+1)$,
 /// $\beta_k = k/(k+1)$, and $1/(k+1)$ for the compensated form.
 struct Recurrence {
     order: usize,
@@ -343,7 +343,7 @@ fn newton_in_x(coefficients: &Recurrence, mut xs: [f64; LANES]) -> Option<[f64; 
 /// The last Newton step and the weight of roots with $x > 1/2$, in twice the working precision.
 ///
 /// The point is $t = 1 - x = 2\sin^2(\theta/2)$, taken as exact. With $P = P_n$, $D = D_n$ from the
-/// compensated Reinsch recurrence, $g = P_{n-1} - xP_n = tP - D$ and $s = 1 - x^2 = t(2 - t)$:
+/// compensated Reinsch recurrence, $g = P\_{n-1} - xP_n = tP - D$ and $s = 1 - x^2 = t(2 - t)$:
 /// $P_n'(x) = n g / s$, the root is $t + \delta t$ with $\delta t = P s/(n g)$, and the weight
 /// $F(t) = 2 s / (n g)^2$ is moved to the root by its logarithmic derivative
 /// $\mathrm d\ln F/\mathrm dt = 2(1 - t)/s$.
@@ -371,7 +371,7 @@ fn polish_near_one(coefficients: &Recurrence, thetas: [f64; LANES]) -> [(f64, f6
 }
 
 /// The last Newton step and the weight of roots with $x \le 1/2$, in twice the working
-/// precision: with $g = P_{n-1} - xP_n$ and $s = 1 - x^2$, $P_n'(x) = n g/s$, the step is
+/// precision: with $g = P\_{n-1} - xP_n$ and $s = 1 - x^2$, $P_n'(x) = n g/s$, the step is
 /// $\delta x = -P s/(n g)$ and the weight $F(x) = 2 s/(n g)^2$ is moved to the root by
 /// $\mathrm d\ln F/\mathrm dx = -2x/s$.
 fn polish_in_x(coefficients: &Recurrence, xs: [f64; LANES]) -> [(f64, f64); LANES] {
@@ -391,7 +391,7 @@ fn polish_in_x(coefficients: &Recurrence, xs: [f64; LANES]) -> [(f64, f64); LANE
     })
 }
 
-/// $(P_n(x), P_{n-1}(x))$ to about twice the working precision, for several points: the
+/// $(P_n(x), P\_{n-1}(x))$ to about twice the working precision, for several points: the
 /// three-term recurrence with every rounding error captured by an error-free transformation and
 /// carried in a second, low-order sequence (compensated evaluation, as in Graillat, Langlois and
 /// Louvet's compensated Horner scheme).
@@ -430,7 +430,7 @@ fn compensated_three_term(
     )
 }
 
-/// $(P_n, D_n = P_n - P_{n-1})$ at $x = 1 - t$ to about twice the working precision, for several
+/// $(P_n, D_n = P_n - P\_{n-1})$ at $x = 1 - t$ to about twice the working precision, for several
 /// points: Reinsch's recurrence, compensated as in [`compensated_three_term`].
 fn compensated_reinsch(
     coefficients: &Recurrence,

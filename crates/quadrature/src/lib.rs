@@ -9,11 +9,11 @@
 //!
 //! | Item | Integrates | Exact for / accuracy |
 //! |---|---|---|
-//! | [`GaussLegendre`] | $\int_a^b f\,\mathrm dx$ with $n$ nodes | polynomials of degree $\le 2n-1$; nodes and weights correctly rounded in every test up to $n = 1000$ |
+//! | [`GaussLegendre`] | $\int_a^b f\\,\mathrm dx$ with $n$ nodes | polynomials of degree $\le 2n-1$; nodes and weights correctly rounded in every test up to $n = 1000$ |
 //! | [`PeriodicTrapezoid`] | one period of a periodic $f$ | $e^{ikx}$ for $\lvert k\rvert < n$; geometric convergence for analytic $f$ |
-//! | [`TensorProductRule`] | $\iint f\,\mathrm du\,\mathrm dv$ on a rectangle | products of what its factors integrate exactly |
-//! | [`NestedTensorRule`], [`NestedCubature`] | $\iint \mathbf f\,\mathrm du\,\mathrm dv$, periodic in $u$, by nested doubling (trapezoid × Fejér) | requested tolerance; the estimate costs no extra evaluation |
-//! | [`AdaptiveCubature`] | $\iint \mathbf f\,\mathrm du\,\mathrm dv$, $N$ components at once | requested tolerance, with error estimate and evaluation count |
+//! | [`TensorProductRule`] | $\iint f\\,\mathrm du\\,\mathrm dv$ on a rectangle | products of what its factors integrate exactly |
+//! | [`NestedTensorRule`], [`NestedCubature`] | $\iint \mathbf f\\,\mathrm du\\,\mathrm dv$, periodic in $u$, by nested doubling (trapezoid × Fejér) | requested tolerance; the estimate costs no extra evaluation |
+//! | [`AdaptiveCubature`] | $\iint \mathbf f\\,\mathrm du\\,\mathrm dv$, $N$ components at once | requested tolerance, with error estimate and evaluation count |
 //!
 //! One-dimensional rules share the [`Rule1D`] trait (an [`Interval`], nodes, weights); any two
 //! make a [`TensorProductRule`].

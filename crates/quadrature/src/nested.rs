@@ -7,12 +7,12 @@
 //!
 //! # The rules
 //!
-//! **Periodic trapezoid doubling** ([`NestedTrapezoid`]). Level $\ell$ has $N_\ell = N_0 2^\ell$
-//! nodes $\psi_j = a + jh_\ell$, $h_\ell = P/N_\ell$, on one period; level $\ell + 1$ adds the
+//! **Periodic trapezoid doubling** ([`NestedTrapezoid`]). Level $\ell$ has $N\_\ell = N_0 2^\ell$
+//! nodes $\psi_j = a + jh\_\ell$, $h\_\ell = P/N\_\ell$, on one period; level $\ell + 1$ adds the
 //! midpoints. An optional smooth periodic change of variables $\varphi(\psi)$ (for example a
 //! clustering map) is applied once, at construction: the rule stores $\varphi(\psi_j)$ and the
 //! factor $\varphi'(\psi_j)$, and
-//! $$\int_a^{a+P} f(\varphi)\,\mathrm d\varphi \approx h_\ell\sum_{j<N_\ell} \varphi'(\psi_j)\,f(\varphi(\psi_j)).$$
+//! $$\int_a^{a+P} f(\varphi)\\,\mathrm d\varphi \approx h\_\ell\sum\_{j<N\_\ell} \varphi'(\psi_j)\\,f(\varphi(\psi_j)).$$
 //! For $f$ analytic in a strip the error falls like $e^{-cN}$, so one doubling squares it
 //! (roughly): the change between levels $\ell-1$ and $\ell$ is the error of level $\ell-1$, an
 //! over-estimate of level $\ell$'s. The **half** variant keeps only the nodes of the first half
@@ -20,9 +20,9 @@
 //! $a + P/2$ (as $f(\psi) = f(2a + P - \psi)$), the full-period value is twice the half sum.
 //!
 //! **Fejér's second rule doubling** ([`NestedFejer`]). On $[-1, 1]$, level $\ell$ has the
-//! $n_\ell - 1$ interior Chebyshev extrema $x_k = \cos(k\pi/n_\ell)$, $n_\ell = n_0 2^\ell$,
-//! $k = 1, \dots, n_\ell - 1$, with weights (Fejér 1933; Waldvogel, BIT 46, 2006)
-//! $$w_k = \frac{4\sin\theta_k}{n}\sum_{j=1}^{\lfloor n/2\rfloor}\frac{\sin\big((2j-1)\theta_k\big)}{2j-1},
+//! $n\_\ell - 1$ interior Chebyshev extrema $x_k = \cos(k\pi/n\_\ell)$, $n\_\ell = n_0 2^\ell$,
+//! $k = 1, \dots, n\_\ell - 1$, with weights (Fejér 1933; Waldvogel, BIT 46, 2006)
+//! $$w_k = \frac{4\sin\theta_k}{n}\sum\_{j=1}^{\lfloor n/2\rfloor}\frac{\sin\big((2j-1)\theta_k\big)}{2j-1},
 //!   \qquad \theta_k = k\pi/n.$$
 //! Doubling $n$ keeps every node ($k \to 2k$) and adds the odd $k$. The rule is interpolatory:
 //! exact for polynomials of degree $\le n - 2$ (and $n - 1$ for even $n$, by symmetry), and it
@@ -33,20 +33,20 @@
 //!
 //! # The cubature
 //!
-//! [`NestedCubature`] integrates $\int\!\!\int \mathbf f(\varphi, x)\,\mathrm d\varphi\,\mathrm dx$
+//! [`NestedCubature`] integrates $\int\\!\\!\int \mathbf f(\varphi, x)\\,\mathrm d\varphi\\,\mathrm dx$
 //! ($N$ components at once) on the tensor grid of a [`NestedTrapezoid`] level $i$ and a
 //! [`NestedFejer`] level $j$. It keeps, for every across node $x_k$, the raw sums
-//! $S_k^{(i)} = \sum_{m<N_i}\varphi'_m f(\varphi_m, x_k)$ at levels $i$ and $i - 1$, so that three
+//! $S_k^{(i)} = \sum\_{m<N_i}\varphi'\_m f(\varphi_m, x_k)$ at levels $i$ and $i - 1$, so that three
 //! values come from the same evaluations:
-//! $$Q_{i,j} = h_i\sum_k w^{(j)}_k S^{(i)}_k,\quad Q_{i-1,j} = h_{i-1}\sum_k w^{(j)}_k S^{(i-1)}_k,\quad
-//!   Q_{i,j-1} = h_i\sum_{k} w^{(j-1)}_k S^{(i)}_k.$$
-//! and likewise $Q_{i-2,j}$ (a third set of line sums) and $Q_{i,j-2}$. In each direction the
-//! caller's norm measures the last two changes, $\delta_1 = \|Q_{\ell-1} - Q_{\ell-2}\|$ and
-//! $\delta_2 = \|Q_\ell - Q_{\ell-1}\|$, and the error of $Q_\ell$ is estimated by
+//! $$Q\_{i,j} = h_i\sum_k w^{(j)}\_k S^{(i)}\_k,\quad Q\_{i-1,j} = h\_{i-1}\sum_k w^{(j)}\_k S^{(i-1)}\_k,\quad
+//!   Q\_{i,j-1} = h_i\sum\_{k} w^{(j-1)}\_k S^{(i)}\_k.$$
+//! and likewise $Q\_{i-2,j}$ (a third set of line sums) and $Q\_{i,j-2}$. In each direction the
+//! caller's norm measures the last two changes, $\delta_1 = \\|Q\_{\ell-1} - Q\_{\ell-2}\\|$ and
+//! $\delta_2 = \\|Q\_\ell - Q\_{\ell-1}\\|$, and the error of $Q\_\ell$ is estimated by
 //! $\delta_2^2/\delta_1$ ([`rate_estimate`]): the next doubling is assumed to shrink the error
 //! at least as much as the last one did, true with a wide margin under geometric convergence.
 //! While the larger estimate exceeds the tolerance, that direction is doubled (every earlier
-//! evaluation is kept). $Q_{i,j}$ is returned. The integrand is asked for **line sums**: the sum over a range of
+//! evaluation is kept). $Q\_{i,j}$ is returned. The integrand is asked for **line sums**: the sum over a range of
 //! periodic nodes (in nested order) on one across node, so a caller can hoist what depends on
 //! the across coordinate only out of the inner loop.
 
@@ -57,7 +57,7 @@ use std::ops::Range;
 /// Largest number of doublings a nested rule may be built with.
 pub const MAX_NESTED_LEVELS: usize = 12;
 
-/// Largest node count of a level of a [`NestedFejer`] rule ($n_\ell \le$ this).
+/// Largest node count of a level of a [`NestedFejer`] rule ($n\_\ell \le$ this).
 pub const MAX_FEJER_SUBDIVISIONS: usize = 4096;
 
 /// The periodic trapezoid rule under doubling, nodes in nested order (see the module docs).
@@ -190,7 +190,7 @@ impl NestedTrapezoid {
         }
     }
 
-    /// The step $h_\ell = P/N_\ell$ that multiplies the sum at `level`.
+    /// The step $h\_\ell = P/N\_\ell$ that multiplies the sum at `level`.
     pub fn step(&self, level: usize) -> f64 {
         self.interval.width() / (self.base << level.min(self.levels)) as f64
     }
@@ -305,7 +305,7 @@ impl NestedFejer {
 }
 
 /// Fejér's second-rule weight of node $k$ of the $n$-subdivision rule on $[-1, 1]$, the sum
-/// done by rotating $e^{i(2j-1)\theta}$ (rounding grows like $\sqrt n\,\epsilon$).
+/// done by rotating $e^{i(2j-1)\theta}$ (rounding grows like $\sqrt n\\,\epsilon$).
 fn fejer_weight(n: usize, k: usize) -> f64 {
     let theta = std::f64::consts::PI * k as f64 / n as f64;
     let (s1, c1) = theta.sin_cos();
@@ -346,13 +346,13 @@ pub struct NestedLevels {
 /// The result of a [`NestedCubature`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NestedEstimate<const N: usize> {
-    /// $Q_{i,j}$.
+    /// $Q\_{i,j}$.
     pub value: [f64; N],
-    /// $|Q_{i,j} - Q_{i-1,j}|$ per component.
+    /// $|Q\_{i,j} - Q\_{i-1,j}|$ per component.
     pub periodic_change: [f64; N],
-    /// $|Q_{i,j} - Q_{i,j-1}|$ per component.
+    /// $|Q\_{i,j} - Q\_{i,j-1}|$ per component.
     pub across_change: [f64; N],
-    /// The estimated error of $Q_{i,j}$ in the caller's norm (the larger direction's).
+    /// The estimated error of $Q\_{i,j}$ in the caller's norm (the larger direction's).
     pub error_estimate: f64,
     /// Integrand evaluations (as counted by the line sums).
     pub evaluations: usize,
@@ -363,10 +363,10 @@ pub struct NestedEstimate<const N: usize> {
 }
 
 /// The error estimate of the finest of three nested levels from the changes
-/// $\delta_1 = \|Q_{\ell-1} - Q_{\ell-2}\|$ and $\delta_2 = \|Q_\ell - Q_{\ell-1}\|$:
+/// $\delta_1 = \\|Q\_{\ell-1} - Q\_{\ell-2}\\|$ and $\delta_2 = \\|Q\_\ell - Q\_{\ell-1}\\|$:
 /// $$ e = \delta_2^2/\delta_1 \quad (\text{and } e = \delta_2 \text{ if } \delta_1 = \delta_2 = 0 \text{, else } +\infty \text{ if } \delta_1 = 0).$$
 /// It assumes only that the next doubling shrinks the error at least as much as the last one
-/// did ($e_\ell/e_{\ell-1} \le e_{\ell-1}/e_{\ell-2}$), which holds for algebraic convergence
+/// did ($e\_\ell/e\_{\ell-1} \le e\_{\ell-1}/e\_{\ell-2}$), which holds for algebraic convergence
 /// (equality) and with a wide margin for geometric convergence, where each doubling squares
 /// the error (then the true error is $\approx\delta_2^3/\delta_1^2$). A change that grows
 /// ($\delta_2 > \delta_1$: not yet converging) gives $e > \delta_2$.
@@ -382,11 +382,11 @@ pub fn rate_estimate(coarser_change: f64, change: f64) -> f64 {
 
 /// The error estimate of the finest of three nested levels when the convergence is known to be
 /// geometric in the node count (an integrand analytic in a wide strip or Bernstein ellipse,
-/// such as a far body's field): with $e_\ell \approx C\rho^{-n_\ell}$ and $n_\ell$ doubling,
-/// $\delta_1 \approx e_{\ell-2}$, $\delta_2 \approx e_{\ell-1}$ and
-/// $e_\ell \approx \delta_2\,(\delta_2/\delta_1)^2$; returned (edge cases as
+/// such as a far body's field): with $e\_\ell \approx C\rho^{-n\_\ell}$ and $n\_\ell$ doubling,
+/// $\delta_1 \approx e\_{\ell-2}$, $\delta_2 \approx e\_{\ell-1}$ and
+/// $e\_\ell \approx \delta_2\\,(\delta_2/\delta_1)^2$; returned (edge cases as
 /// [`rate_estimate`]) is
-/// $$ e = \delta_2\,(\delta_2/\delta_1)^{p}, $$
+/// $$ e = \delta_2\\,(\delta_2/\delta_1)^{p}, $$
 /// with the caller's exponent $1 \le p \le 2$: $p = 1$ is [`rate_estimate`]; $p < 2$ keeps a
 /// margin for a prefactor $C$ that grows with the level. Only as honest as the assumption: a
 /// caller must show, by tests over its integrands, that the true error stays below it.

@@ -1,7 +1,7 @@
 //! The trapezoid rule for periodic integrands.
 //!
 //! For $f$ of period $P$, the $n$-point rule on one period $[a, a + P)$ is
-//! $$\int_a^{a+P} f(x)\,\mathrm dx \approx h \sum_{j=0}^{n-1} f(a + jh), \qquad h = P/n.$$
+//! $$\int_a^{a+P} f(x)\\,\mathrm dx \approx h \sum\_{j=0}^{n-1} f(a + jh), \qquad h = P/n.$$
 //! It integrates every trigonometric polynomial $e^{2\pi i k x/P}$ with $|k| < n$ exactly
 //! ($k = \pm n$ aliases to the constant), so for $f$ analytic in a strip
 //! $|\operatorname{Im} x| < \sigma$ the error falls like $e^{-2\pi\sigma n/P}$ (Trefethen and

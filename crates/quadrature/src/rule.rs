@@ -1,7 +1,7 @@
 //! What every one-dimensional rule shares: an interval, nodes and weights.
 //!
-//! A rule $\{(x_i, w_i)\}_{i=1}^{n}$ on $[a, b]$ approximates
-//! $$\int_a^b f(x)\,\mathrm dx \approx \sum_{i=1}^{n} w_i\, f(x_i).$$
+//! A rule $\\{(x_i, w_i)\\}\_{i=1}^{n}$ on $[a, b]$ approximates
+//! $$\int_a^b f(x)\\,\mathrm dx \approx \sum\_{i=1}^{n} w_i\\, f(x_i).$$
 //! The nodes and weights are computed once, by the rule's constructor, and stored as plain
 //! slices, so that the same table serves every integrand (a body's surface-node table is built
 //! from them once and reused for every force evaluation).

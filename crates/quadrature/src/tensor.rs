@@ -1,10 +1,10 @@
 //! Tensor products of two one-dimensional rules on a rectangle.
 //!
-//! From a rule $\{(u_i, w^u_i)\}_{i<n_u}$ on $[u_0, u_1]$ and a rule $\{(v_j, w^v_j)\}_{j<n_v}$
+//! From a rule $\\{(u_i, w^u_i)\\}\_{i<n_u}$ on $[u_0, u_1]$ and a rule $\\{(v_j, w^v_j)\\}\_{j<n_v}$
 //! on $[v_0, v_1]$,
-//! $$\int_{v_0}^{v_1}\!\int_{u_0}^{u_1} f(u, v)\,\mathrm du\,\mathrm dv \approx
-//! \sum_{j<n_v} \sum_{i<n_u} w^u_i\, w^v_j\, f(u_i, v_j),$$
-//! exact for $f = p(u)\,q(v)$ whenever each factor is integrated exactly by its rule. The
+//! $$\int\_{v_0}^{v_1}\\!\int\_{u_0}^{u_1} f(u, v)\\,\mathrm du\\,\mathrm dv \approx
+//! \sum\_{j<n_v} \sum\_{i<n_u} w^u_i\\, w^v_j\\, f(u_i, v_j),$$
+//! exact for $f = p(u)\\,q(v)$ whenever each factor is integrated exactly by its rule. The
 //! $n_u n_v$ nodes $(u_i, v_j, w^u_i w^v_j)$ are built once and stored with $u$ varying fastest
 //! (node $j n_u + i$), ready for a body to turn into its table of surface points and weighted
 //! area vectors.

@@ -7,7 +7,7 @@ use surfgrav_quadrature::{
     MAX_GAUSS_LEGENDRE_ORDER,
 };
 
-/// $\int_a^b ((x - m)/h)^k\,dx = h \cdot 2/(k+1)$ for even k, 0 for odd k.
+/// $\int_a^b ((x - m)/h)^k\\,dx = h \cdot 2/(k+1)$ for even k, 0 for odd k.
 fn scaled_monomial_integral(half_width: f64, power: usize) -> f64 {
     if power % 2 == 1 {
         0.0

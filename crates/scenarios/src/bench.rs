@@ -13,14 +13,14 @@
 //!
 //! # Errors, and against what
 //!
-//! * Interaction (a): the relative error of the force is $\lVert F - F_\mathrm{ref}\rVert /
-//!   \lVert F_\mathrm{ref}\rVert$ and of the energy $|U - U_\mathrm{ref}| / |U_\mathrm{ref}|$,
+//! * Interaction (a): the relative error of the force is $\lVert F - F\_\mathrm{ref}\rVert /
+//!   \lVert F\_\mathrm{ref}\rVert$ and of the energy $|U - U\_\mathrm{ref}| / |U\_\mathrm{ref}|$,
 //!   against `tests/reference/interactions.json`: an independent volume integration (by
 //!   `tests/reference/interactions.py`) with an estimated relative accuracy of about
 //!   $2\times10^{-16}$. Not against the engine itself.
 //! * Dynamics (b, c): the energy error is $\max_k |E_k - E_0| / |E_0|$ over every accepted
 //!   step (the total energy with the same model the run used), the trajectory error is
-//!   $\lVert \mathbf r(t_\mathrm{end}) - \mathbf r_\mathrm{ref}(t_\mathrm{end}) \rVert$ for the
+//!   $\lVert \mathbf r(t\_\mathrm{end}) - \mathbf r\_\mathrm{ref}(t\_\mathrm{end}) \rVert$ for the
 //!   relative position $\mathbf r = \mathbf R_B - \mathbf R_A$ (length units), against a DOP853
 //!   run at relative and absolute tolerance $10^{-14}$ with the same model (so it measures the
 //!   integrator; the model's own error is (a)'s). How far a run at $10^{-13}$ ends from it is

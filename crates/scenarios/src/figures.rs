@@ -3,17 +3,17 @@
 //! - [`orbits`] (Fig. 2): the orbit seen face-on in its own plane (the plane normal to the
 //!   relative angular momentum $\mathbf r \times \dot{\mathbf r}$ at the start; the x–y plane
 //!   for the paper's scenes), left both centroids about the centre of mass
-//!   $\mathbf R_{cm} = (m_A\mathbf R_A + m_B\mathbf R_B)/(m_A + m_B)$, right B relative to A,
+//!   $\mathbf R\_{cm} = (m_A\mathbf R_A + m_B\mathbf R_B)/(m_A + m_B)$, right B relative to A,
 //!   $\mathbf r = \mathbf R_B - \mathbf R_A$; below, B relative to A seen edge-on along each
 //!   in-plane axis (two side views). Bodies are drawn to scale as their true outlines, dashed:
 //!   the orthographic projection of the ellipsoid $\mathbf x^\top M^{-1}\mathbf x \le 1$,
-//!   $M = R\,\mathrm{diag}(a^2, b^2, c^2)R^\top$ at the body's orientation $R$, onto a view
+//!   $M = R\\,\mathrm{diag}(a^2, b^2, c^2)R^\top$ at the body's orientation $R$, onto a view
 //!   plane with unit axes $\mathbf u, \mathbf v$ is the ellipse of the 2 × 2 matrix
 //!   $S = [\mathbf u\ \mathbf v]^\top M [\mathbf u\ \mathbf v]$ (a disk is the case
 //!   c = 0, a sphere a = b = c); drawn at the start, and B also at the closest step.
 //!   Point masses have no outline.
-//! - [`conservation`] (Fig. 3): separation $r_{AB}$ against time; the per-step changes
-//!   $\Delta E_k = E_k - E_{k-1}$ and $\Delta J_k = |\mathbf J_k| - |\mathbf J_{k-1}|$; and the
+//! - [`conservation`] (Fig. 3): separation $r\_{AB}$ against time; the per-step changes
+//!   $\Delta E_k = E_k - E\_{k-1}$ and $\Delta J_k = |\mathbf J_k| - |\mathbf J\_{k-1}|$; and the
 //!   cumulative $(E - E_0)/|E_0|$ and $(J - J_0)/|J_0|$, which stay readable over long runs
 //!   where the per-step panels fill solid.
 //! - [`histograms`] (Fig. 4): the distributions of $\Delta E$ and $\Delta J$ (every step).
@@ -396,7 +396,7 @@ fn masses(run: &RunRecord) -> (Real, Real) {
     (m(&run.scene.body_a), m(&run.scene.body_b))
 }
 
-/// Per-step changes $(t_k, x_k - x_{k-1})$ over every step.
+/// Per-step changes $(t_k, x_k - x\_{k-1})$ over every step.
 pub fn step_changes(run: &RunRecord, values: &[Real]) -> Vec<(Real, Real)> {
     run.step_times
         .iter()

@@ -67,7 +67,7 @@ pub struct OutputSummary {
     pub rows: usize,
     /// Every n-th step was written (`null` with an interval).
     pub every: Option<usize>,
-    /// Rows at $t_0 + k\,\Delta$ from the dense output (`null` with `every`).
+    /// Rows at $t_0 + k\\,\Delta$ from the dense output (`null` with `every`).
     pub interval: Option<Real>,
     /// `scene` (the scene file's `[output]`) or `default` (chosen from the run's length).
     pub chosen_by: &'static str,
@@ -92,7 +92,7 @@ pub struct Summary {
     pub min_separation: Option<Real>,
     /// $T_r$.
     pub radial_period: Option<Real>,
-    /// $T_\psi$.
+    /// $T\_\psi$.
     pub azimuthal_period: Option<Real>,
     /// $\psi_p$ in degrees.
     pub precession_angle_deg: Option<Real>,
@@ -110,7 +110,7 @@ pub struct Summary {
     pub motion: MotionSummary,
     /// Largest $|\mathbf J - \mathbf J_0|/|\mathbf J_0|$ of the total angular-momentum vector.
     pub angular_momentum_vector_max_relative_drift: Real,
-    /// Largest change of the linear momentum relative to $m_A|\dot{\mathbf R}_A| + m_B|\dot{\mathbf R}_B|$ at the start.
+    /// Largest change of the linear momentum relative to $m_A|\dot{\mathbf R}\_A| + m_B|\dot{\mathbf R}\_B|$ at the start.
     pub linear_momentum_max_relative_drift: Real,
     /// Per body (A, B): spin rate, obliquity, libration.
     pub spins: [SpinSummary; 2],
@@ -258,7 +258,7 @@ pub const DEFAULT_MAX_ADAPTIVE_ROWS: usize = 2_000;
 pub enum Cadence {
     /// Every n-th step (the integrator's own samples, exact), and the last.
     Every(usize),
-    /// The states at $t_0 + k\,\Delta$ from the integrator's dense output, and the last.
+    /// The states at $t_0 + k\\,\Delta$ from the integrator's dense output, and the last.
     Interval(Real),
 }
 

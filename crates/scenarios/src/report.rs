@@ -1,20 +1,20 @@
 //! `surfgrav report`: the founding paper's scenes run side by side and written to `REPORT.md`
 //! with their figures.
 //!
-//! - **Precession table**: $\psi_p$, $\Omega_p$, $T_r$, $T_\psi$ and the minimum separation of
+//! - **Precession table**: $\psi_p$, $\Omega_p$, $T_r$, $T\_\psi$ and the minimum separation of
 //!   every paper preset, beside the paper's rounded values (Sect. 4.1–4.2) and continuous-time
 //!   reference values of an independent computation.
 //! - **Table 2**: mean, $\sigma$, $\sigma/\sqrt N$ and slope of $\Delta E$ and $\Delta J$ for
 //!   2S and 2D, beside the paper's.
 //! - **Fig. 7**: the relative difference of the separation,
-//!   $\Delta r/r = (r_{\text{spheroids}}(t) - r_{\text{reference}}(t))/r_{\text{reference}}(t)$,
+//!   $\Delta r/r = (r\_{\text{spheroids}}(t) - r\_{\text{reference}}(t))/r\_{\text{reference}}(t)$,
 //!   for c/a = 0.99 vs point masses, c/a = 0.01 vs uniform disks and the two cross pairings,
-//!   compared at the common times $t_k = 0.1\,k$: each run writes its states there
+//!   compared at the common times $t_k = 0.1\\,k$: each run writes its states there
 //!   (`[output] interval = 0.1`; the dt = 0.01 disk run's come from the quintic Hermite dense
 //!   output, error $O(h^6)$).
 //! - **The flat limit**: a homogeneous spheroid flattened to c → 0 becomes a *Maclaurin disk*,
 //!   surface density $\sigma(s) = \frac{3M}{2\pi a^2}\sqrt{1 - s^2/a^2}$, not a uniform disk.
-//!   Their second moments differ: $\int s^2\,\mathrm dm = \frac25 M a^2$ against
+//!   Their second moments differ: $\int s^2\\,\mathrm dm = \frac25 M a^2$ against
 //!   $\frac12 M a^2$, so the in-plane quadrupole excess of the potential,
 //!   $\Phi(r) \approx -\frac{GM}{r}\big(1 + \frac{C - A}{2 M r^2}\big)$ with
 //!   $(C - A)/M = a^2/5$ (Maclaurin) against $a^2/4$ (uniform), is 0.8 times the disk's far

@@ -201,7 +201,7 @@ pub struct OutputFile {
     /// Write every n-th step to the trajectory.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub every: Option<Spanned<i64>>,
-    /// Write the states at $t_0 + k\,\Delta$ from the dense output (instead of `every`).
+    /// Write the states at $t_0 + k\\,\Delta$ from the dense output (instead of `every`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub interval: Option<Spanned<Real>>,
     /// Figures to draw (default all three).
@@ -282,7 +282,7 @@ pub enum OutputCadence {
     Default,
     /// Every n-th step (and the last).
     Every(usize),
-    /// The states at $t_0 + k\,\Delta$ from the integrator's dense output (and the last).
+    /// The states at $t_0 + k\\,\Delta$ from the integrator's dense output (and the last).
     Interval(Real),
 }
 

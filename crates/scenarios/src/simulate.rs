@@ -16,7 +16,7 @@
 //! Per sample the run records the total energy $E = T + V$ (spins included) and
 //! $J = |\mathbf J|$ (orbital and spin angular momentum; one energy
 //! evaluation per sample, never per stage) and feeds the changes between consecutive samples,
-//! $\Delta E_k = E_k - E_{k-1}$ and $\Delta J_k = J_k - J_{k-1}$, to the statistics of
+//! $\Delta E_k = E_k - E\_{k-1}$ and $\Delta J_k = J_k - J\_{k-1}$, to the statistics of
 //! [`surfgrav_dynamics::diagnostics`] (the paper's Table 2). The relative orbit goes to
 //! [`OrbitAnalyser`] (apsides, periods, precession, minimum separation).
 
@@ -183,8 +183,8 @@ pub struct RunRecord {
     pub angular_momentum_errors: Vec<Real>,
     /// Largest $|\mathbf J - \mathbf J_0|/|\mathbf J_0|$.
     pub angular_momentum_vector_drift: Real,
-    /// Largest $|\mathbf P - \mathbf P_0|/(m_A|\dot{\mathbf R}_A| + m_B|\dot{\mathbf R}_B|)_0$ of the
-    /// linear momentum $\mathbf P = m_A\dot{\mathbf R}_A + m_B\dot{\mathbf R}_B$.
+    /// Largest $|\mathbf P - \mathbf P_0|/(m_A|\dot{\mathbf R}\_A| + m_B|\dot{\mathbf R}\_B|)\_0$ of the
+    /// linear momentum $\mathbf P = m_A\dot{\mathbf R}\_A + m_B\dot{\mathbf R}\_B$.
     pub linear_momentum_drift: Real,
     /// Which equations were integrated, and why.
     pub path: MotionPath,

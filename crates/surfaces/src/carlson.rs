@@ -14,7 +14,7 @@ use crate::Real;
 /// steps for any finite positive arguments; the cap only keeps a NaN from looping.
 const MAX_STEPS: usize = 200;
 
-/// $R_F(x, y, z) = \tfrac12 \int_0^\infty [(t+x)(t+y)(t+z)]^{-1/2}\,\mathrm dt$.
+/// $R_F(x, y, z) = \tfrac12 \int_0^\infty [(t+x)(t+y)(t+z)]^{-1/2}\\,\mathrm dt$.
 pub(crate) fn rf(x: Real, y: Real, z: Real) -> Real {
     let (x0, y0) = (x, y);
     let (mut x, mut y, mut z) = (x, y, z);
@@ -44,7 +44,7 @@ pub(crate) fn rf(x: Real, y: Real, z: Real) -> Real {
     (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / a.sqrt()
 }
 
-/// $R_D(x, y, z) = \tfrac32 \int_0^\infty [(t+x)(t+y)]^{-1/2}(t+z)^{-3/2}\,\mathrm dt$.
+/// $R_D(x, y, z) = \tfrac32 \int_0^\infty [(t+x)(t+y)]^{-1/2}(t+z)^{-3/2}\\,\mathrm dt$.
 pub(crate) fn rd(x: Real, y: Real, z: Real) -> Real {
     let (x0, y0) = (x, y);
     let (mut x, mut y, mut z) = (x, y, z);
@@ -83,7 +83,7 @@ pub(crate) fn rd(x: Real, y: Real, z: Real) -> Real {
     scale * series / (a * a.sqrt()) + 3.0 * sum
 }
 
-/// $R_G(x, y, z) = \tfrac{1}{4\pi}\int_{S^2} \sqrt{x n_1^2 + y n_2^2 + z n_3^2}\,\mathrm d\Omega$,
+/// $R_G(x, y, z) = \tfrac{1}{4\pi}\int\_{S^2} \sqrt{x n_1^2 + y n_2^2 + z n_3^2}\\,\mathrm d\Omega$,
 /// by DLMF 19.21.10 with the middle argument in the role of $z$ so that $(x - z)(y - z) \le 0$
 /// and no cancellation occurs. Requires positive arguments.
 pub(crate) fn rg(x: Real, y: Real, z: Real) -> Real {

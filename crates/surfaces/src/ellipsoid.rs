@@ -7,21 +7,21 @@
 //! Section "surface integration method" of the paper slices the ellipsoid by planes of constant
 //! $z$; with $s(z) = \sqrt{c^2 - z^2} = \sqrt{(c - z)(c + z)}$,
 //!
-//! $$ \mathbf r(\varphi, z) = \Big(\tfrac{a}{c}\, s \cos\varphi,\ \tfrac{b}{c}\, s \sin\varphi,\ z\Big),
+//! $$ \mathbf r(\varphi, z) = \Big(\tfrac{a}{c}\\, s \cos\varphi,\ \tfrac{b}{c}\\, s \sin\varphi,\ z\Big),
 //!    \qquad \varphi \in [0, 2\pi],\ z \in [-c, c] . $$
 //!
-//! Differentiating, $\partial_\varphi \mathbf r = (-\tfrac ac s \sin\varphi, \tfrac bc s\cos\varphi, 0)$
+//! Differentiating, $\partial\_\varphi \mathbf r = (-\tfrac ac s \sin\varphi, \tfrac bc s\cos\varphi, 0)$
 //! and $\partial_z \mathbf r = (-\tfrac{a z}{c s}\cos\varphi, -\tfrac{b z}{c s}\sin\varphi, 1)$ (the
 //! paper's $\mathrm d\mathbf r_1$, $\mathrm d\mathbf r_2$), and their cross product, in which the $1/s$
 //! cancels because $\cos^2 + \sin^2 = 1$, is
 //!
-//! $$ \mathbf S = \partial_\varphi \mathbf r \times \partial_z \mathbf r =
-//!    \Big(\tfrac{b}{c}\, s\cos\varphi,\ \tfrac{a}{c}\, s\sin\varphi,\ \tfrac{ab}{c^2}\, z\Big), $$
+//! $$ \mathbf S = \partial\_\varphi \mathbf r \times \partial_z \mathbf r =
+//!    \Big(\tfrac{b}{c}\\, s\cos\varphi,\ \tfrac{a}{c}\\, s\sin\varphi,\ \tfrac{ab}{c^2}\\, z\Big), $$
 //!
 //! which agrees with the paper's $\mathrm d\mathbf S$ (its Eq. for $\mathrm d\mathbf r_1 \times
 //! \mathrm d\mathbf r_2$). It points outward: at $(a, 0, 0)$ it is $(b, 0, 0)$, and
 //! $\mathbf r \cdot \mathbf S = ab > 0$ everywhere, so $\tfrac13\oint \mathbf r\cdot\mathrm d\mathbf S
-//! = \tfrac13\, ab \cdot 2\pi \cdot 2c$ is the volume **for any quadrature rule** (a test checks it).
+//! = \tfrac13\\, ab \cdot 2\pi \cdot 2c$ is the volume **for any quadrature rule** (a test checks it).
 //! $u = \varphi$ is periodic. $\mathbf S$ is finite and non-zero at the poles
 //! ($(0, 0, \pm ab/c)$): a step in $z$ sweeps a finite area there.
 //!
@@ -60,7 +60,7 @@
 //! $$ \mathbf r(\theta, \varphi) = (a \sin\theta\cos\varphi,\ b\sin\theta\sin\varphi,\ c\cos\theta),
 //!    \qquad \theta \in [0, \pi],\ \varphi \in [0, 2\pi], $$
 //!
-//! $$ \mathbf S = \partial_\theta \mathbf r \times \partial_\varphi \mathbf r = \sin\theta\,
+//! $$ \mathbf S = \partial\_\theta \mathbf r \times \partial\_\varphi \mathbf r = \sin\theta\\,
 //!    \big(bc\sin\theta\cos\varphi,\ ac\sin\theta\sin\varphi,\ ab\cos\theta\big), $$
 //!
 //! outward ($\mathbf r\cdot\mathbf S = abc\sin\theta$); here $u = \theta$, $v = \varphi$ (periodic), the
@@ -69,7 +69,7 @@
 //!
 //! # Closed forms
 //!
-//! Volume $\tfrac43\pi abc$; surface area $4\pi abc\, R_G(a^{-2}, b^{-2}, c^{-2})$ with Carlson's
+//! Volume $\tfrac43\pi abc$; surface area $4\pi abc\\, R_G(a^{-2}, b^{-2}, c^{-2})$ with Carlson's
 //! $R_G$ (DLMF 19.33.1), which reduces to the textbook spheroid formulas.
 
 use crate::carlson;
@@ -177,7 +177,7 @@ impl EllipsoidSurface {
         self.volume
     }
 
-    /// $4\pi abc\,R_G(a^{-2}, b^{-2}, c^{-2})$.
+    /// $4\pi abc\\,R_G(a^{-2}, b^{-2}, c^{-2})$.
     pub fn surface_area(&self) -> Real {
         self.surface_area
     }

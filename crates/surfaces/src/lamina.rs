@@ -7,26 +7,26 @@
 //!
 //! # Nodes
 //!
-//! **Area nodes**, in polar coordinates $(s, \varphi)$ with area element $s\,\mathrm ds\,\mathrm d\varphi$:
+//! **Area nodes**, in polar coordinates $(s, \varphi)$ with area element $s\\,\mathrm ds\\,\mathrm d\varphi$:
 //! with an angle rule $(\varphi_i, \omega^\varphi_i)$ mapped onto $[0, 2\pi]$ and a radial rule
 //! $(s_j, \omega^s_j)$ mapped onto $[0, R]$,
 //!
-//! $$ \mathbf r_k = (s_j\cos\varphi_i,\ s_j\sin\varphi_i,\ 0), \qquad w_k = \omega^\varphi_i\,\omega^s_j\,s_j,
-//!    \qquad \iint f\,\mathrm dA \approx \sum_k w_k f(\mathbf r_k) . $$
+//! $$ \mathbf r_k = (s_j\cos\varphi_i,\ s_j\sin\varphi_i,\ 0), \qquad w_k = \omega^\varphi_i\\,\omega^s_j\\,s_j,
+//!    \qquad \iint f\\,\mathrm dA \approx \sum_k w_k f(\mathbf r_k) . $$
 //!
-//! For $f$ analytic on the disk the radial integrand $s\,f(s\cos\varphi, s\sin\varphi)$ is analytic in
+//! For $f$ analytic on the disk the radial integrand $s\\,f(s\cos\varphi, s\sin\varphi)$ is analytic in
 //! $s$, so Gauss–Legendre in $s$ converges geometrically (and the trapezoid rule in $\varphi$ too).
 //!
 //! **Rim nodes**, with the outward in-plane normal $\hat{\boldsymbol\nu} = (\cos\varphi, \sin\varphi, 0)$
-//! and $\mathrm dl = R\,\mathrm d\varphi$:
+//! and $\mathrm dl = R\\,\mathrm d\varphi$:
 //!
 //! $$ \boldsymbol\rho_i = R(\cos\varphi_i, \sin\varphi_i, 0), \qquad
-//!    \boldsymbol\nu_i = \omega^\varphi_i\,R\,\hat{\boldsymbol\nu}(\varphi_i), \qquad
-//!    \oint f\,\hat{\boldsymbol\nu}\,\mathrm dl \approx \sum_i f(\boldsymbol\rho_i)\,\boldsymbol\nu_i . $$
+//!    \boldsymbol\nu_i = \omega^\varphi_i\\,R\\,\hat{\boldsymbol\nu}(\varphi_i), \qquad
+//!    \oint f\\,\hat{\boldsymbol\nu}\\,\mathrm dl \approx \sum_i f(\boldsymbol\rho_i)\\,\boldsymbol\nu_i . $$
 //!
-//! The 2-D divergence theorem $\iint \nabla_\parallel\!\cdot\mathbf G\,\mathrm dA = \oint \mathbf G\cdot\hat{\boldsymbol\nu}\,\mathrm dl$
-//! gives $\iint \nabla_\parallel \Phi\,\mathrm dA = \oint \Phi\,\hat{\boldsymbol\nu}\,\mathrm dl$ for the in-plane
-//! gradient $\nabla_\parallel = \nabla - \hat{\mathbf n}(\hat{\mathbf n}\cdot\nabla)$.
+//! The 2-D divergence theorem $\iint \nabla\_\parallel\\!\cdot\mathbf G\\,\mathrm dA = \oint \mathbf G\cdot\hat{\boldsymbol\nu}\\,\mathrm dl$
+//! gives $\iint \nabla\_\parallel \Phi\\,\mathrm dA = \oint \Phi\\,\hat{\boldsymbol\nu}\\,\mathrm dl$ for the in-plane
+//! gradient $\nabla\_\parallel = \nabla - \hat{\mathbf n}(\hat{\mathbf n}\cdot\nabla)$.
 //!
 //! # How the engine combines them (sign convention of the workspace)
 //!
@@ -34,18 +34,18 @@
 //! $\mathbf a_B = -\nabla\Phi_B$ evaluated at the nodes (all vectors in one frame; $\mathbf c$ the
 //! disk centre, $\hat{\mathbf n}$ its normal, both carried by [`LaminaNodes`]):
 //!
-//! $$ U = \sigma \iint \Phi_B\,\mathrm dA \approx \sigma\sum_k w_k\,\Phi_B(\mathbf r_k), $$
+//! $$ U = \sigma \iint \Phi_B\\,\mathrm dA \approx \sigma\sum_k w_k\\,\Phi_B(\mathbf r_k), $$
 //!
-//! $$ \mathbf F_A = \sigma\iint \mathbf a_B\,\mathrm dA
-//!    = \sigma\,\hat{\mathbf n}\iint (\mathbf a_B\cdot\hat{\mathbf n})\,\mathrm dA \;-\; \sigma\oint \Phi_B\,\hat{\boldsymbol\nu}\,\mathrm dl
-//!    \approx \sigma\,\hat{\mathbf n}\sum_k w_k\,\mathbf a_B(\mathbf r_k)\cdot\hat{\mathbf n} \;-\; \sigma\sum_i \Phi_B(\boldsymbol\rho_i)\,\boldsymbol\nu_i , $$
+//! $$ \mathbf F_A = \sigma\iint \mathbf a_B\\,\mathrm dA
+//!    = \sigma\\,\hat{\mathbf n}\iint (\mathbf a_B\cdot\hat{\mathbf n})\\,\mathrm dA \\;-\\; \sigma\oint \Phi_B\\,\hat{\boldsymbol\nu}\\,\mathrm dl
+//!    \approx \sigma\\,\hat{\mathbf n}\sum_k w_k\\,\mathbf a_B(\mathbf r_k)\cdot\hat{\mathbf n} \\;-\\; \sigma\sum_i \Phi_B(\boldsymbol\rho_i)\\,\boldsymbol\nu_i , $$
 //!
-//! $$ \mathbf M_A = \sigma\iint (\mathbf r - \mathbf c)\times\mathbf a_B\,\mathrm dA
-//!    = \sigma\iint (\mathbf a_B\cdot\hat{\mathbf n})\,(\mathbf r - \mathbf c)\times\hat{\mathbf n}\,\mathrm dA
-//!    \approx \sigma\sum_k w_k\,(\mathbf a_B(\mathbf r_k)\cdot\hat{\mathbf n})\,(\mathbf r_k - \mathbf c)\times\hat{\mathbf n} . $$
+//! $$ \mathbf M_A = \sigma\iint (\mathbf r - \mathbf c)\times\mathbf a_B\\,\mathrm dA
+//!    = \sigma\iint (\mathbf a_B\cdot\hat{\mathbf n})\\,(\mathbf r - \mathbf c)\times\hat{\mathbf n}\\,\mathrm dA
+//!    \approx \sigma\sum_k w_k\\,(\mathbf a_B(\mathbf r_k)\cdot\hat{\mathbf n})\\,(\mathbf r_k - \mathbf c)\times\hat{\mathbf n} . $$
 //!
-//! The torque needs no in-plane term: $\iint (\mathbf r - \mathbf c)\times\nabla_\parallel\Phi\,\mathrm dA
-//! = \hat{\mathbf n}\oint \Phi\,[(\mathbf r - \mathbf c)\times\hat{\boldsymbol\nu}]\cdot\hat{\mathbf n}\,\mathrm dl = 0$
+//! The torque needs no in-plane term: $\iint (\mathbf r - \mathbf c)\times\nabla\_\parallel\Phi\\,\mathrm dA
+//! = \hat{\mathbf n}\oint \Phi\\,[(\mathbf r - \mathbf c)\times\hat{\boldsymbol\nu}]\cdot\hat{\mathbf n}\\,\mathrm dl = 0$
 //! because $\hat{\boldsymbol\nu} \parallel \mathbf r - \mathbf c$ on a circle: no field turns a uniform
 //! disk about its axis. For a coplanar B (its field has no normal component in its own plane)
 //! the force comes from the rim alone and the torque vanishes.
@@ -186,7 +186,7 @@ impl LaminaNodes {
         &self.rim_points
     }
 
-    /// Weighted outward in-plane normals $\boldsymbol\nu_i = \hat{\boldsymbol\nu}\,\mathrm dl$.
+    /// Weighted outward in-plane normals $\boldsymbol\nu_i = \hat{\boldsymbol\nu}\\,\mathrm dl$.
     pub fn rim_weighted_normals(&self) -> &[Vec3] {
         &self.rim_weighted_normals
     }
@@ -211,7 +211,7 @@ impl LaminaNodes {
         self.normal
     }
 
-    /// $\iint f\,\mathrm dA \approx \sum_k w_k f(\mathbf r_k)$ (compensated sum).
+    /// $\iint f\\,\mathrm dA \approx \sum_k w_k f(\mathbf r_k)$ (compensated sum).
     #[inline]
     pub fn integrate_area<F: FnMut(&Vec3) -> Real>(&self, mut f: F) -> Real {
         self.area_iter()
@@ -220,7 +220,7 @@ impl LaminaNodes {
             .value()
     }
 
-    /// $\iint \mathbf g\,\mathrm dA \approx \sum_k w_k \mathbf g(\mathbf r_k)$.
+    /// $\iint \mathbf g\\,\mathrm dA \approx \sum_k w_k \mathbf g(\mathbf r_k)$.
     #[inline]
     pub fn integrate_area_vector<F: FnMut(&Vec3) -> Vec3>(&self, mut g: F) -> Vec3 {
         self.area_iter()
@@ -229,7 +229,7 @@ impl LaminaNodes {
             .value()
     }
 
-    /// $\oint f\,\hat{\boldsymbol\nu}\,\mathrm dl \approx \sum_i f(\boldsymbol\rho_i)\,\boldsymbol\nu_i$.
+    /// $\oint f\\,\hat{\boldsymbol\nu}\\,\mathrm dl \approx \sum_i f(\boldsymbol\rho_i)\\,\boldsymbol\nu_i$.
     #[inline]
     pub fn integrate_rim<F: FnMut(&Vec3) -> Real>(&self, mut f: F) -> Vec3 {
         self.rim_iter()
@@ -238,7 +238,7 @@ impl LaminaNodes {
             .value()
     }
 
-    /// $\oint \mathbf G\cdot\hat{\boldsymbol\nu}\,\mathrm dl \approx \sum_i \mathbf G(\boldsymbol\rho_i)\cdot\boldsymbol\nu_i$.
+    /// $\oint \mathbf G\cdot\hat{\boldsymbol\nu}\\,\mathrm dl \approx \sum_i \mathbf G(\boldsymbol\rho_i)\cdot\boldsymbol\nu_i$.
     #[inline]
     pub fn integrate_rim_flux<F: FnMut(&Vec3) -> Vec3>(&self, mut field: F) -> Real {
         self.rim_iter()

@@ -3,21 +3,21 @@
 //!
 //! # Rules on a triangle (Stroud's conical product)
 //!
-//! On the reference triangle $T = \{(x, y): x, y \ge 0,\ x + y \le 1\}$ the collapse
-//! $x = u$, $y = (1-u)\,t$ with $(u, t) \in (0,1)^2$ has Jacobian $1-u$:
-//! $$\int_T f\,\mathrm dA = \int_0^1\!\!\int_0^1 f\bigl(u, (1-u)t\bigr)\,(1-u)\,\mathrm dt\,\mathrm du .$$
+//! On the reference triangle $T = \\{(x, y): x, y \ge 0,\ x + y \le 1\\}$ the collapse
+//! $x = u$, $y = (1-u)\\,t$ with $(u, t) \in (0,1)^2$ has Jacobian $1-u$:
+//! $$\int_T f\\,\mathrm dA = \int_0^1\\!\\!\int_0^1 f\bigl(u, (1-u)t\bigr)\\,(1-u)\\,\mathrm dt\\,\mathrm du .$$
 //! For a polynomial $f$ of total degree $d$ the integrand is a polynomial of degree $\le d$ in
 //! $u$ (against the weight $1-u$) and in $t$. The $n$-point Gauss–Jacobi rule for the weight
 //! $1-u$ on $[0, 1]$ and the $n$-point Gauss–Legendre rule in $t$ are both exact to degree
 //! $2n-1$, so their product ($n^2$ points, positive weights, all inside $T$) is exact for every
 //! polynomial of total degree $2n-1$ ([`TriangleRule::conical_product`]; the test
 //! `mesh_rules` integrates every monomial $x^iy^j$, $i + j \le 2n-1$, against
-//! $i!\,j!/(i+j+2)!$ for $n = 1..8$ and shows that degree $2n$ fails). The Gauss–Jacobi rule is
+//! $i!\\,j!/(i+j+2)!$ for $n = 1..8$ and shows that degree $2n$ fails). The Gauss–Jacobi rule is
 //! computed here, not tabulated: the recurrence coefficients of the monic orthogonal
 //! polynomials by the discretised Stieltjes procedure on a Gauss–Legendre rule of $n + 4$
 //! points (exact for every inner product it forms), then Golub–Welsch (the eigenvalues of the
 //! Jacobi matrix are the nodes, the squared first eigenvector components times
-//! $\int_0^1(1-u)\,\mathrm du = \tfrac12$ the weights).
+//! $\int_0^1(1-u)\\,\mathrm du = \tfrac12$ the weights).
 //!
 //! # Faces, subdivision, area vectors
 //!

@@ -4,38 +4,38 @@
 //! $(u_i, \omega^u_i)$, $(v_j, \omega^v_j)$ mapped onto its parameter rectangle, the table holds
 //!
 //! $$ \mathbf r_k = \mathbf r(u_i, v_j), \qquad
-//!    \mathbf W_k = \omega^u_i\,\omega^v_j\,\mathbf S(u_i, v_j), \qquad k = j\,n_u + i, $$
+//!    \mathbf W_k = \omega^u_i\\,\omega^v_j\\,\mathbf S(u_i, v_j), \qquad k = j\\,n_u + i, $$
 //!
-//! so that $\oint f\,\mathrm d\mathbf S \approx \sum_k f(\mathbf r_k)\,\mathbf W_k$ for any integrand.
+//! so that $\oint f\\,\mathrm d\mathbf S \approx \sum_k f(\mathbf r_k)\\,\mathbf W_k$ for any integrand.
 //! The table also records where the body-frame origin (the centroid) is, so that moments can be
 //! taken about it after the table has been moved.
 //!
 //! # How the engine uses it (sign convention of the workspace)
 //!
 //! With $\Phi_B < 0$ and $\mathbf a_B = -\nabla\Phi_B$, a homogeneous solid A of density
-//! $\rho_A$ outside B feels, by Gauss's theorem ($\int_V \nabla\Phi\,\mathrm dV = \oint \Phi\,\mathrm d\mathbf S$):
+//! $\rho_A$ outside B feels, by Gauss's theorem ($\int_V \nabla\Phi\\,\mathrm dV = \oint \Phi\\,\mathrm d\mathbf S$):
 //!
-//! $$ \mathbf F_A = \rho_A\!\int_A \mathbf a_B\,\mathrm dV = -\rho_A \oint_A \Phi_B\,\mathrm d\mathbf S
-//!    \approx -\rho_A \sum_k \Phi_B(\mathbf r_k)\,\mathbf W_k ,$$
+//! $$ \mathbf F_A = \rho_A\\!\int_A \mathbf a_B\\,\mathrm dV = -\rho_A \oint_A \Phi_B\\,\mathrm d\mathbf S
+//!    \approx -\rho_A \sum_k \Phi_B(\mathbf r_k)\\,\mathbf W_k ,$$
 //!
-//! $$ \mathbf M_A = \rho_A\!\int_A (\mathbf r - \mathbf o)\times\mathbf a_B\,\mathrm dV
-//!    = -\rho_A \oint_A \Phi_B\,(\mathbf r - \mathbf o)\times\mathrm d\mathbf S , $$
+//! $$ \mathbf M_A = \rho_A\\!\int_A (\mathbf r - \mathbf o)\times\mathbf a_B\\,\mathrm dV
+//!    = -\rho_A \oint_A \Phi_B\\,(\mathbf r - \mathbf o)\times\mathrm d\mathbf S , $$
 //!
 //! (torque about the centroid $\mathbf o$; Conway's $\mathbf V_1 = -(\mathbf r - \mathbf o)\Phi$),
 //! and, when $\nabla^2\Phi_B = 0$ inside A (the bodies do not overlap),
 //!
-//! $$ U = \rho_A\!\int_A \Phi_B\,\mathrm dV = \frac{\rho_A}{3}\oint_A
-//!    \Big[\Phi_B\,(\mathbf r - \mathbf o) + \tfrac12\,|\mathbf r - \mathbf o|^2\,\mathbf a_B\Big]\cdot\mathrm d\mathbf S ,$$
+//! $$ U = \rho_A\\!\int_A \Phi_B\\,\mathrm dV = \frac{\rho_A}{3}\oint_A
+//!    \Big[\Phi_B\\,(\mathbf r - \mathbf o) + \tfrac12\\,|\mathbf r - \mathbf o|^2\\,\mathbf a_B\Big]\cdot\mathrm d\mathbf S ,$$
 //!
-//! since $\nabla\cdot[\Phi\,\mathbf x - \tfrac12|\mathbf x|^2\nabla\Phi] = 3\Phi - \tfrac12|\mathbf x|^2\nabla^2\Phi$.
+//! since $\nabla\cdot[\Phi\\,\mathbf x - \tfrac12|\mathbf x|^2\nabla\Phi] = 3\Phi - \tfrac12|\mathbf x|^2\nabla^2\Phi$.
 //! (The paper writes $\mathbf g = +\nabla\Phi$; with our $\mathbf a = -\nabla\Phi$ the sign of the
 //! second term flips.) Each identity is checked by this crate's tests against independent volume
 //! quadratures.
 //!
 //! # Frames
 //!
-//! [`SurfaceNodes::transformed`] maps the table by $\mathbf r' = R\,\mathbf r + \mathbf t$,
-//! $\mathbf W' = R\,\mathbf W$ (a proper rotation keeps area vectors outward and of the same
+//! [`SurfaceNodes::transformed`] maps the table by $\mathbf r' = R\\,\mathbf r + \mathbf t$,
+//! $\mathbf W' = R\\,\mathbf W$ (a proper rotation keeps area vectors outward and of the same
 //! length). To evaluate B's potential at A's nodes in B's frame, with poses
 //! $(\mathbf p_A, R_A)$, $(\mathbf p_B, R_B)$ mapping body to world, use
 //! $R = R_B^{\mathsf T} R_A$ and $\mathbf t = R_B^{\mathsf T}(\mathbf p_A - \mathbf p_B)$; the sums above are
@@ -121,7 +121,7 @@ impl SurfaceNodes {
         self.points.is_empty()
     }
 
-    /// Numbers of nodes in $u$ and in $v$; node $k = j\,n_u + i$ belongs to $(u_i, v_j)$.
+    /// Numbers of nodes in $u$ and in $v$; node $k = j\\,n_u + i$ belongs to $(u_i, v_j)$.
     pub fn rule_sizes(&self) -> (usize, usize) {
         (self.u_count, self.v_count)
     }
@@ -186,7 +186,7 @@ impl SurfaceNodes {
         Ok(())
     }
 
-    /// $\oint f\,\mathrm d\mathbf S \approx \sum_k f(\mathbf r_k)\,\mathbf W_k$ (compensated sum,
+    /// $\oint f\\,\mathrm d\mathbf S \approx \sum_k f(\mathbf r_k)\\,\mathbf W_k$ (compensated sum,
     /// see [`crate::sum`]).
     #[inline]
     pub fn integrate<F: FnMut(&Vec3) -> Real>(&self, mut f: F) -> Vec3 {
@@ -206,7 +206,7 @@ impl SurfaceNodes {
     }
 
     /// Moment about the centroid,
-    /// $\oint f\,(\mathbf r - \mathbf o)\times\mathrm d\mathbf S \approx \sum_k f(\mathbf r_k)\,(\mathbf r_k - \mathbf o)\times\mathbf W_k$.
+    /// $\oint f\\,(\mathbf r - \mathbf o)\times\mathrm d\mathbf S \approx \sum_k f(\mathbf r_k)\\,(\mathbf r_k - \mathbf o)\times\mathbf W_k$.
     #[inline]
     pub fn integrate_moment<F: FnMut(&Vec3) -> Real>(&self, mut f: F) -> Vec3 {
         let o = self.origin;

@@ -1,11 +1,11 @@
 //! One-dimensional quadrature rules, borrowed from whoever built them.
 //!
 //! A [`BorrowedRule`] is a view of nodes $x_i$ and weights $w_i$ that integrate on a declared interval
-//! $[p, q]$: $\int_p^q f(x)\,\mathrm dx \approx \sum_i w_i f(x_i)$. The node-table builders map it
+//! $[p, q]$: $\int_p^q f(x)\\,\mathrm dx \approx \sum_i w_i f(x_i)$. The node-table builders map it
 //! affinely onto the parameter interval $[t_0, t_1]$ they need,
 //!
-//! $$ t_i = t_0 + (x_i - p)\,\frac{t_1 - t_0}{q - p}, \qquad
-//!    W_i = w_i\,\frac{t_1 - t_0}{q - p}, $$
+//! $$ t_i = t_0 + (x_i - p)\\,\frac{t_1 - t_0}{q - p}, \qquad
+//!    W_i = w_i\\,\frac{t_1 - t_0}{q - p}, $$
 //!
 //! so one Gauss–Legendre rule on $[-1, 1]$ and one trapezoid rule on $[0, 1)$ serve every body.
 //! This crate does not build rules itself (that is `surfgrav-quadrature`'s job); any rule works.

@@ -1,15 +1,15 @@
 //! Compensated (Kahan–Babuška–Neumaier) summation for node sums.
 //!
 //! A surface integral is a sum of $10^3$–$10^5$ terms that largely cancel (the force on a
-//! distant body is a small difference of $\Phi\,\mathbf W$ terms of size $|\Phi|\,$area). Naive
-//! summation leaves an error of about $\sqrt N\,\epsilon\,\sum_k|t_k|$ (measured: $2\times10^{-14}$
+//! distant body is a small difference of $\Phi\\,\mathbf W$ terms of size $|\Phi|\\,$area). Naive
+//! summation leaves an error of about $\sqrt N\\,\epsilon\\,\sum_k|t_k|$ (measured: $2\times10^{-14}$
 //! relative for the area of a sphere from 9216 nodes); the compensated sum carries the rounding
 //! error of each addition in a second accumulator,
 //!
-//! $$ t = s + x,\qquad c \mathrel{+}= \begin{cases}(s - t) + x & |s| \ge |x|\\ (x - t) + s & \text{otherwise}\end{cases},
+//! $$ t = s + x,\qquad c \mathrel{+}= \begin{cases}(s - t) + x & |s| \ge |x|\\\\ (x - t) + s & \text{otherwise}\end{cases},
 //!    \qquad s = t, $$
 //!
-//! and returns $s + c$, with an error of about $\epsilon\,|\sum_k t_k| + N\epsilon^2\sum_k|t_k|$,
+//! and returns $s + c$, with an error of about $\epsilon\\,|\sum_k t_k| + N\epsilon^2\sum_k|t_k|$,
 //! independent of $N$ in practice, for four extra floating-point operations per term.
 
 use crate::{Real, Vec3};

@@ -8,8 +8,8 @@
 //! with the order of $u$ and $v$ chosen by each parametrisation so that $\mathbf S$ points
 //! **out of** the enclosed volume. Hence, for any integrand $f$,
 //!
-//! $$ \oint f\, \mathrm d\mathbf S = \int_{v_0}^{v_1}\!\int_{u_0}^{u_1} f(\mathbf r(u, v))\,
-//!    \mathbf S(u, v)\, \mathrm du\, \mathrm dv , $$
+//! $$ \oint f\\, \mathrm d\mathbf S = \int\_{v_0}^{v_1}\\!\int\_{u_0}^{u_1} f(\mathbf r(u, v))\\,
+//!    \mathbf S(u, v)\\, \mathrm du\\, \mathrm dv , $$
 //!
 //! and a tensor quadrature rule turns it into the weighted sum that a
 //! [`SurfaceNodes`](crate::SurfaceNodes) table precomputes.

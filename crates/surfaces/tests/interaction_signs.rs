@@ -108,8 +108,8 @@ fn surface_integrals_equal_volume_integrals() {
     }
 }
 
-/// A sphere's surface integral equals the point formula: $\mathbf F = m\,\mathbf a(\mathbf c)$,
-/// $V = m\,\Phi(\mathbf c)$, no torque on the sphere.
+/// A sphere's surface integral equals the point formula: $\mathbf F = m\\,\mathbf a(\mathbf c)$,
+/// $V = m\\,\Phi(\mathbf c)$, no torque on the sphere.
 #[test]
 fn sphere_surface_integral_equals_point_formula() {
     let sphere = Body::sphere(Sphere::new(0.7, 2.0).unwrap()).unwrap();

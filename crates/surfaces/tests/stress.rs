@@ -36,8 +36,8 @@ fn spheroid(ratio: f64) -> Body {
 }
 
 /// MacCullagh's far-field energy of two unit-mass spheroids (a = 1, c) whose symmetry axes are
-/// both along z, B at `offset`: $V \approx -1/R - \sum (\operatorname{tr}I - 3I_{RR})/(2R^3)$ with
-/// $I_{RR} = (a^2 + c^2)/5 - (c^2 - a^2)\,\hat R_z^2/5 \cdot$ (per unit mass); relative error
+/// both along z, B at `offset`: $V \approx -1/R - \sum (\operatorname{tr}I - 3I\_{RR})/(2R^3)$ with
+/// $I\_{RR} = (a^2 + c^2)/5 - (c^2 - a^2)\\,\hat R_z^2/5 \cdot$ (per unit mass); relative error
 /// $O((s/R)^4)$ for size $s$.
 fn maccullagh(ratio: f64, offset: &Vec3) -> f64 {
     let r = offset.norm();

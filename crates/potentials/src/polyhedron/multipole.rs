@@ -4,52 +4,52 @@
 //! # Formulas
 //!
 //! Solid harmonics without the Condon–Shortley phase, for $m \ge 0$,
-//! $$R_n^m(\mathbf u) = \frac{u^n P_n^m(\cos\theta)\,e^{im\varphi}}{(n+m)!},\qquad
-//!   I_n^m(\mathbf x) = \frac{(n-m)!\,P_n^m(\cos\theta)\,e^{im\varphi}}{x^{n+1}},$$
+//! $$R_n^m(\mathbf u) = \frac{u^n P_n^m(\cos\theta)\\,e^{im\varphi}}{(n+m)!},\qquad
+//!   I_n^m(\mathbf x) = \frac{(n-m)!\\,P_n^m(\cos\theta)\\,e^{im\varphi}}{x^{n+1}},$$
 //! and $X_n^{-m} = \overline{X_n^m}$. The addition theorem of the Legendre polynomials gives, for
 //! $|\mathbf u| < |\mathbf x|$,
-//! $$\frac{1}{|\mathbf x - \mathbf u|} = \sum_{n\ge0} \frac{u^n}{x^{n+1}} P_n(\cos\gamma)
-//!   = \sum_{n\ge0}\sum_{m=-n}^{n} \overline{R_n^m(\mathbf u)}\, I_n^m(\mathbf x),$$
-//! so with the moments $M_n^m = \rho\int_V R_n^m(\mathbf u - \mathbf c)\,\mathrm dV$ about the
+//! $$\frac{1}{|\mathbf x - \mathbf u|} = \sum\_{n\ge0} \frac{u^n}{x^{n+1}} P_n(\cos\gamma)
+//!   = \sum\_{n\ge0}\sum\_{m=-n}^{n} \overline{R_n^m(\mathbf u)}\\, I_n^m(\mathbf x),$$
+//! so with the moments $M_n^m = \rho\int_V R_n^m(\mathbf u - \mathbf c)\\,\mathrm dV$ about the
 //! centroid $\mathbf c$,
-//! $$\Phi(\mathbf p) = -G \sum_{n\le N} \Bigl[M_n^0 I_n^0 + 2\,\mathrm{Re}\sum_{m=1}^{n}
-//!   \overline{M_n^m}\, I_n^m(\mathbf p - \mathbf c)\Bigr] + T_N .$$
+//! $$\Phi(\mathbf p) = -G \sum\_{n\le N} \Bigl[M_n^0 I_n^0 + 2\\,\mathrm{Re}\sum\_{m=1}^{n}
+//!   \overline{M_n^m}\\, I_n^m(\mathbf p - \mathbf c)\Bigr] + T_N .$$
 //!
 //! Recurrences in Cartesian coordinates ($\rho^2 = x^2+y^2+z^2$), from those of $P_n^m$:
-//! $R_m^m = \frac{x+iy}{2m} R_{m-1}^{m-1}$,
-//! $R_n^m = \frac{(2n-1) z R_{n-1}^m - \rho^2 R_{n-2}^m}{(n-m)(n+m)}$;
-//! $I_m^m = (2m-1)\frac{x+iy}{\rho^2} I_{m-1}^{m-1}$,
-//! $I_n^m = \frac{(2n-1) z I_{n-1}^m - (n+m-1)(n-m-1) I_{n-2}^m}{\rho^2}$.
-//! Derivatives ($\partial_\pm = \partial_x \pm i\partial_y$): $\partial_z I_n^m = -I_{n+1}^m$,
-//! $\partial_+ I_n^m = -I_{n+1}^{m+1}$, $\partial_- I_n^m = I_{n+1}^{m-1}$ for $m\ge1$ and
-//! $\partial_- I_n^0 = -\overline{I_{n+1}^1}$ (the first two by induction on the recurrences;
-//! the third from $\partial_+\partial_- = -\partial_z^2$ on harmonic functions). A unit test
+//! $R_m^m = \frac{x+iy}{2m} R\_{m-1}^{m-1}$,
+//! $R_n^m = \frac{(2n-1) z R\_{n-1}^m - \rho^2 R\_{n-2}^m}{(n-m)(n+m)}$;
+//! $I_m^m = (2m-1)\frac{x+iy}{\rho^2} I\_{m-1}^{m-1}$,
+//! $I_n^m = \frac{(2n-1) z I\_{n-1}^m - (n+m-1)(n-m-1) I\_{n-2}^m}{\rho^2}$.
+//! Derivatives ($\partial\_\pm = \partial_x \pm i\partial_y$): $\partial_z I_n^m = -I\_{n+1}^m$,
+//! $\partial\_+ I_n^m = -I\_{n+1}^{m+1}$, $\partial\_- I_n^m = I\_{n+1}^{m-1}$ for $m\ge1$ and
+//! $\partial\_- I_n^0 = -\overline{I\_{n+1}^1}$ (the first two by induction on the recurrences;
+//! the third from $\partial\_+\partial\_- = -\partial_z^2$ on harmonic functions). A unit test
 //! checks the addition theorem and each derivative against finite differences.
 //!
 //! # Moments
 //!
 //! Whittaker's integral (Laplace's integral for $P_n^m$) writes each harmonic as a Fourier
 //! coefficient of a power of a linear form,
-//! $$R_n^m(\mathbf x) = \frac{i^{-m}}{n!}\,\frac{1}{2\pi}\int_0^{2\pi}
-//!   (z + i x\cos u + i y \sin u)^n e^{imu}\,\mathrm du ,$$
+//! $$R_n^m(\mathbf x) = \frac{i^{-m}}{n!}\\,\frac{1}{2\pi}\int_0^{2\pi}
+//!   (z + i x\cos u + i y \sin u)^n e^{imu}\\,\mathrm du ,$$
 //! and a power of a linear form integrates exactly over a tetrahedron $T$ with vertices
 //! $\mathbf 0, \mathbf v_1, \mathbf v_2, \mathbf v_3$:
-//! $\int_T (\boldsymbol\ell\cdot\mathbf x)^n\,\mathrm dV = V_T\,\frac{n!\,3!}{(n+3)!}\,
+//! $\int_T (\boldsymbol\ell\cdot\mathbf x)^n\\,\mathrm dV = V_T\\,\frac{n!\\,3!}{(n+3)!}\\,
 //! h_n(\boldsymbol\ell\cdot\mathbf v_1, \boldsymbol\ell\cdot\mathbf v_2,
 //! \boldsymbol\ell\cdot\mathbf v_3)$, $h_n$ the complete homogeneous symmetric polynomial.
 //! Summing signed tetrahedra with apex at $\mathbf c$ over the faces and sampling $u$ at
 //! $2N+2$ equispaced angles (exact: the integrand is a trigonometric polynomial of degree
 //! $\le N$) gives every moment to degree $N$ in $O(F N^2)$ operations, exact to rounding. A
 //! unit test checks them against Gauss quadrature of the surface form
-//! $\int_V R_n^m = \frac{1}{n+3}\sum_f d_f\int_f R_n^m\,\mathrm dA$.
+//! $\int_V R_n^m = \frac{1}{n+3}\sum_f d_f\int_f R_n^m\\,\mathrm dA$.
 //!
 //! # Truncation bound
 //!
 //! All mass lies within $R$ (the circumscribing radius about $\mathbf c$); with $q = R/|\mathbf
 //! p - \mathbf c| < 1$ and $|P_n| \le 1$,
-//! $$|T_N| \le \frac{GM}{r}\,\frac{q^{N+1}}{1-q},\qquad
-//!   |\nabla T_N| \le \frac{GM}{r^2} \sum_{n>N} (n+1) q^n
-//!   = \frac{GM}{r^2}\,\frac{q^{N+1}\,[(N+2) - (N+1)q]}{(1-q)^2},$$
+//! $$|T_N| \le \frac{GM}{r}\\,\frac{q^{N+1}}{1-q},\qquad
+//!   |\nabla T_N| \le \frac{GM}{r^2} \sum\_{n>N} (n+1) q^n
+//!   = \frac{GM}{r^2}\\,\frac{q^{N+1}\\,[(N+2) - (N+1)q]}{(1-q)^2},$$
 //! the second from $|\nabla (P_n(\cos\gamma)/r^{n+1})| \le (n+1)/r^{n+2}$, which follows from
 //! $(n+1)^2P_n^2 + (1-t^2)P_n'^2 \le n(n+1) + (n+1)P_n^2 \le (n+1)^2$ (the classical
 //! $P_n^2 + (1-t^2)P_n'^2/(n(n+1)) \le 1$). Against the lower bounds $|\Phi| \ge GM/(r+R)$ and
@@ -136,12 +136,12 @@ pub(crate) struct Multipole {
     pub radius: Real,
     /// Highest degree stored.
     pub degree: usize,
-    /// $\tilde M_n^m = \rho R^3 \int R_n^m(\tilde{\mathbf u})\,\mathrm d\tilde V$, mass units.
+    /// $\tilde M_n^m = \rho R^3 \int R_n^m(\tilde{\mathbf u})\\,\mathrm d\tilde V$, mass units.
     pub moments: Vec<C64>,
     /// $w_m\overline{M_n^m}$ ($w_0 = 1$, else 2): Σ = Σ Re($w_m\overline{M_n^m} I_n^m$).
     weighted: Vec<C64>,
     /// Per $(n', m')$, $n' \le$ `degree` + 1, the coefficients $C$ with
-    /// $\partial_{x,y,z}\Sigma = \sum \mathrm{Re}(C_{x,y,z}\,I_{n'}^{m'})$: the derivative
+    /// $\partial\_{x,y,z}\Sigma = \sum \mathrm{Re}(C\_{x,y,z}\\,I\_{n'}^{m'})$: the derivative
     /// relations of the module docs gathered once (each moment of degree $n$ feeds $n' = n + 1$
     /// only, so truncating the sum at $n' \le N + 1$ is the degree-$N$ gradient).
     gradient: Vec<[C64; 3]>,
@@ -232,7 +232,7 @@ impl Multipole {
     }
 }
 
-/// $\int_V R_n^m((\mathbf u - \mathbf c)\,s)\,\mathrm dV$ (in units scaled by `scale`) for
+/// $\int_V R_n^m((\mathbf u - \mathbf c)\\,s)\\,\mathrm dV$ (in units scaled by `scale`) for
 /// $n \le$ `degree`, exactly to rounding, by signed tetrahedra (apex at the centre) and
 /// Whittaker's integral (see the module docs).
 pub(crate) fn volume_moments(

@@ -14,7 +14,7 @@
 //! up to $1/n!$ while its value can be $2^n$ times smaller ($m = n$), so it carries an absolute
 //! rounding of about $\varepsilon/n!$; the irregular harmonic it multiplies is at most
 //! $(2n-1)!!/x^{n+1}$, and $(2n-1)!!/n! < 2^n$. The rounding each degree adds to the potential
-//! is therefore below $\varepsilon\,(2/x)^n$ in units of $GM/R$: bounded for $x \ge 2$, growing
+//! is therefore below $\varepsilon\\,(2/x)^n$ in units of $GM/R$: bounded for $x \ge 2$, growing
 //! geometrically inside. [`REACH_RADII`] keeps the expansion out there.
 
 use super::multipole::{self, Multipole};
@@ -84,7 +84,7 @@ impl Polyhedron {
     /// truncation bounds relative to $|\Phi|$ and $|\mathbf a|$ are below `relative_bound`,
     /// with that degree; `None` where no degree up to [`REACH_DEGREE`] meets it or `p` is
     /// within [`REACH_RADII`] (then use [`crate::Potential::field`]). So
-    /// $|\Phi_{\text{returned}} - \Phi| \le$ `relative_bound` $|\Phi|$ up to rounding, and
+    /// $|\Phi\_{\text{returned}} - \Phi| \le$ `relative_bound` $|\Phi|$ up to rounding, and
     /// likewise for the acceleration.
     pub fn field_expansion(&self, p: &Vec3, relative_bound: Real) -> Option<(Field, usize)> {
         let radii = (p - self.centroid).norm() / self.circumscribing_radius;

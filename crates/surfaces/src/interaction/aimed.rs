@@ -6,10 +6,10 @@
 //!
 //! An ellipsoid with semi-axes $A = \operatorname{diag}(a, b, c)$ is the image $\mathbf r = A\mathbf s$
 //! of the unit sphere, and its area element is the sphere's mapped by the cofactor matrix:
-//! $\mathrm d\mathbf S = \det A\,A^{-1}\mathbf s\,\mathrm d\Omega$. The unit sphere is
+//! $\mathrm d\mathbf S = \det A\\,A^{-1}\mathbf s\\,\mathrm d\Omega$. The unit sphere is
 //! parametrised by polar coordinates $(\theta, \varphi)$ about a pole $\hat{\mathbf p}$,
 //! $\mathbf s = R_p(\sin\theta\cos\varphi, \sin\theta\sin\varphi, \cos\theta)$,
-//! $\mathrm d\Omega = \sin\theta\,\mathrm d\theta\,\mathrm d\varphi$, with $R_p$ a rotation taking
+//! $\mathrm d\Omega = \sin\theta\\,\mathrm d\theta\\,\mathrm d\varphi$, with $R_p$ a rotation taking
 //! $\hat{\mathbf z}$ to $\hat{\mathbf p}$. The pole is the point of X nearest to the singular
 //! set of the other body's field (the rim of an oblate spheroid's focal disk or of a disk, a
 //! prolate spheroid's focal segment, a triaxial ellipsoid's filled focal ellipse; found by
@@ -21,21 +21,21 @@
 //!
 //! If the nearest singular point lies at distance $\delta$ from the pole and the surface
 //! stretches the sphere's tangent plane there by at most $\ell$, the integrand (after the
-//! azimuthal sum) is singular near $\theta = \pm i\theta_\delta$, with
-//! $\cosh\theta_\delta = 1 + \delta^2/(2\ell(\ell + \delta))$ as for a sphere of radius $\ell$
-//! ($\theta_\delta \approx \delta/\ell$ near contact, $\ln(d/\ell)$ at distance $d = \ell + \delta$).
+//! azimuthal sum) is singular near $\theta = \pm i\theta\_\delta$, with
+//! $\cosh\theta\_\delta = 1 + \delta^2/(2\ell(\ell + \delta))$ as for a sphere of radius $\ell$
+//! ($\theta\_\delta \approx \delta/\ell$ near contact, $\ln(d/\ell)$ at distance $d = \ell + \delta$).
 //! Two polar rules are available, and the start level of each is predicted from the
 //! Bernstein ellipse through that singularity (error $\rho^{-2n}$ for $n$ nodes); the cheaper
 //! is used:
 //!
 //! - Gauss–Legendre in $\cos\theta$ (the spherical product rule; with $2n$ azimuths it is
-//!   exact for spherical harmonics to degree $2n - 1$): $\rho = e^{\theta_\delta}$. Best far
+//!   exact for spherical harmonics to degree $2n - 1$): $\rho = e^{\theta\_\delta}$. Best far
 //!   away.
 //! - The map $\theta = w\sinh(\mu u)$, $\mu = \operatorname{asinh}(\pi/w)$, $u \in [0, 1]$, with
 //!   Gauss–Legendre in $u$ (the sinh transformation for nearly singular integrals), for a
-//!   tabulated width $w \le \theta_\delta$ ([`CLUSTER_WIDTHS`]): the singularity moves to
-//!   $u = (\operatorname{acosh}(\theta_\delta/w) + i\pi/2)/\mu$, a distance that shrinks only like
-//!   $1/\log(1/\theta_\delta)$, where Gauss–Legendre in $\theta$ would need $\theta_\delta^{-1/2}$
+//!   tabulated width $w \le \theta\_\delta$ ([`CLUSTER_WIDTHS`]): the singularity moves to
+//!   $u = (\operatorname{acosh}(\theta\_\delta/w) + i\pi/2)/\mu$, a distance that shrinks only like
+//!   $1/\log(1/\theta\_\delta)$, where Gauss–Legendre in $\theta$ would need $\theta\_\delta^{-1/2}$
 //!   times the nodes.
 //!
 //! The azimuth is a plain periodic trapezoid rule, with half as many nodes as the polar rule
@@ -94,7 +94,7 @@ pub(crate) const CLUSTER_WIDTHS: [Real; 22] = [
 const CACHED_NODES: usize = 1 << 20;
 
 /// A unit-sphere grid about the pole $+\hat{\mathbf z}$: directions and weights
-/// $w_u w_\varphi \sin\theta\,\theta'(u)$.
+/// $w_u w\_\varphi \sin\theta\\,\theta'(u)$.
 #[derive(Debug)]
 pub(crate) struct SphereGrid {
     directions: Vec<Vec3>,
@@ -180,7 +180,7 @@ pub(crate) fn grid_key(polar: u16, aim: &Aim) -> GridKey {
     }
 }
 
-/// The first level for singularity width `width` ($\theta_\delta$) and clustering `cluster`: the
+/// The first level for singularity width `width` ($\theta\_\delta$) and clustering `cluster`: the
 /// Gauss–Legendre count whose error bound $\rho^{-2n}$ meets the tolerance, $\rho$ the Bernstein
 /// ellipse through the integrand's singularity nearest the pole (module docs).
 pub(crate) fn start_polar(width: Real, cluster: u8, tolerance: Real) -> u16 {

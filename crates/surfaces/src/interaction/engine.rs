@@ -80,8 +80,8 @@ pub const NESTED_GEOMETRIC_EXPONENT: Real = 1.5;
 
 /// Beyond this many bounding radii of the integrated body X between the centroids, the fixed
 /// and nested rules also sum the acceleration form of the force,
-/// $\rho\oint\mathbf x\,(\mathbf a\cdot\mathrm d\mathbf S)$, and use it instead of
-/// $-\rho\oint(\Phi - \Phi_0)\,\mathrm d\mathbf S$ when its rounding floor
+/// $\rho\oint\mathbf x\\,(\mathbf a\cdot\mathrm d\mathbf S)$, and use it instead of
+/// $-\rho\oint(\Phi - \Phi_0)\\,\mathrm d\mathbf S$ when its rounding floor
 /// $\sum|\mathbf x_k||\mathbf a_k\cdot\mathbf W_k|$ is below $\sum|\Phi_k||\mathbf W_k|$, the floor
 /// the potential form really has there: $\Phi_k - \Phi_0$ keeps the absolute rounding of
 /// $\Phi_k$, about distance/size times its own size, which the potential form's floor
@@ -691,8 +691,8 @@ impl InteractionEngine {
     /// The first transverse count of the ladder, predicted from the gap ratio $g$, the
     /// elevation β and the tolerance τ so that it usually meets the tolerance, erring low (one
     /// level too low costs less than one too high). Measured azimuth counts for $10^{-12}$
-    /// (founding paper's pair, equatorial plane): $N \approx 21\,g^{-0.2}$ clustered,
-    /// $26\,g^{-0.36}$ uniform; fewer out of the plane; proportional to $\log(1/\tau)$.
+    /// (founding paper's pair, equatorial plane): $N \approx 21\\,g^{-0.2}$ clustered,
+    /// $26\\,g^{-0.36}$ uniform; fewer out of the plane; proportional to $\log(1/\tau)$.
     fn start_transverse(&self, placement: &Placement) -> u16 {
         let digits = -self.options.relative_tolerance.log10();
         let g = placement.gap_ratio;
@@ -1333,8 +1333,8 @@ fn evaluate_table(
 }
 
 /// The length $R$ for which the potential form's terms exceed the force $\mathbf F =
-/// -\rho\oint\Phi\,\mathrm d\mathbf S$ by about distance$/R$ (see [`FAR_FIELD_RATIO`]): the
-/// ratio is $|\Phi|\,\mathrm{area}/(|\nabla\Phi|\,\mathrm{volume}) \approx d\,A/V$, and for an
+/// -\rho\oint\Phi\\,\mathrm d\mathbf S$ by about distance$/R$ (see [`FAR_FIELD_RATIO`]): the
+/// ratio is $|\Phi|\\,\mathrm{area}/(|\nabla\Phi|\\,\mathrm{volume}) \approx d\\,A/V$, and for an
 /// ellipsoid $A/V \approx 1/a + 1/b + 1/c$ (exact for a sphere, $3/R$; 102 against the exact
 /// 150 for a = b = 1, c = 0.01), so $R = 3/(1/a + 1/b + 1/c)$, which a flat body makes small.
 /// Other shapes: the bounding radius.

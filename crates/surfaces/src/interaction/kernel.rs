@@ -20,7 +20,7 @@ use surfgrav_potentials::{Field, Pose, Potential};
 /// Nodes summed plainly before a compensated addition.
 pub const BLOCK: usize = 16;
 
-/// The affine map $\mathbf r_B = M\,\mathbf r + \mathbf t$ from the frame of an integrated body's
+/// The affine map $\mathbf r_B = M\\,\mathbf r + \mathbf t$ from the frame of an integrated body's
 /// node table into the frame of the body whose field is evaluated ($M$ a rotation).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FrameMap {
@@ -72,38 +72,38 @@ impl FrameMap {
 /// the centroid, $\mathbf a$ the source's acceleration turned into the table frame).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SolidSums {
-    /// $\sum_k (\Phi_k - \Phi_0) \mathbf W_k \approx \oint \Phi\,\mathrm d\mathbf S$, with $\Phi_0$ the
+    /// $\sum_k (\Phi_k - \Phi_0) \mathbf W_k \approx \oint \Phi\\,\mathrm d\mathbf S$, with $\Phi_0$ the
     /// source's potential at the centroid (taken out because $\oint\mathrm d\mathbf S = 0$: the
     /// terms, and their rounding, shrink by the ratio of the body's size to its distance).
     pub potential_flux: Vec3,
-    /// $\sum_k (\Phi_k - \Phi_0)\, \mathbf x_k \times \mathbf W_k \approx \oint \Phi\,\mathbf x\times\mathrm d\mathbf S$
+    /// $\sum_k (\Phi_k - \Phi_0)\\, \mathbf x_k \times \mathbf W_k \approx \oint \Phi\\,\mathbf x\times\mathrm d\mathbf S$
     /// ($\oint\mathbf x\times\mathrm d\mathbf S = 0$).
     pub potential_moment: Vec3,
-    /// $\sum_k \tfrac12|\mathbf x_k|^2\, \mathbf W_k \times \mathbf a_k \approx \tfrac12\oint |\mathbf x|^2\,\mathrm d\mathbf S\times\mathbf a$.
+    /// $\sum_k \tfrac12|\mathbf x_k|^2\\, \mathbf W_k \times \mathbf a_k \approx \tfrac12\oint |\mathbf x|^2\\,\mathrm d\mathbf S\times\mathbf a$.
     pub gradient_moment: Vec3,
     /// $\sum_k (\Phi_k \mathbf x_k + \tfrac12|\mathbf x_k|^2 \mathbf a_k)\cdot\mathbf W_k$.
     pub energy_flux: Real,
-    /// $\sum_k |\Phi_k - \Phi_0|\,|\mathbf W_k|$: the size of the terms of `potential_flux`,
+    /// $\sum_k |\Phi_k - \Phi_0|\\,|\mathbf W_k|$: the size of the terms of `potential_flux`,
     /// which bounds its rounding error (the terms cancel to a small result far from the source).
     pub potential_flux_magnitude: Real,
-    /// $\sum_k |\Phi_k - \Phi_0|\,|\mathbf x_k\times\mathbf W_k|$.
+    /// $\sum_k |\Phi_k - \Phi_0|\\,|\mathbf x_k\times\mathbf W_k|$.
     pub potential_moment_magnitude: Real,
-    /// $\sum_k |\Phi_k\,\mathbf x_k\cdot\mathbf W_k| + |\tfrac12|\mathbf x_k|^2\,\mathbf a_k\cdot\mathbf W_k|$.
+    /// $\sum_k |\Phi_k\\,\mathbf x_k\cdot\mathbf W_k| + |\tfrac12|\mathbf x_k|^2\\,\mathbf a_k\cdot\mathbf W_k|$.
     pub energy_flux_magnitude: Real,
-    /// $\sum_k \mathbf x_k\,(\mathbf a_k\cdot\mathbf W_k) \approx \oint\mathbf x\,(\mathbf a\cdot\mathrm d\mathbf S)
-    /// = \int\mathbf a\,\mathrm dV$ (as $\nabla\cdot(\mathbf x\otimes\mathbf a) = \mathbf a$ where
+    /// $\sum_k \mathbf x_k\\,(\mathbf a_k\cdot\mathbf W_k) \approx \oint\mathbf x\\,(\mathbf a\cdot\mathrm d\mathbf S)
+    /// = \int\mathbf a\\,\mathrm dV$ (as $\nabla\cdot(\mathbf x\otimes\mathbf a) = \mathbf a$ where
     /// $\nabla\cdot\mathbf a = 0$): the acceleration form of the force, free of the cancellation
     /// of $\Phi_k - \Phi_0$ far from the source (the engine's `force_form` choice).
     pub acceleration_flux: Vec3,
-    /// $\sum_k |\mathbf x_k|\,|\mathbf a_k\cdot\mathbf W_k|$.
+    /// $\sum_k |\mathbf x_k|\\,|\mathbf a_k\cdot\mathbf W_k|$.
     pub acceleration_flux_magnitude: Real,
-    /// $\sum_k |\Phi_k|\,|\mathbf W_k|$: the scale of the rounding of $\Phi_k$ itself, which
+    /// $\sum_k |\Phi_k|\\,|\mathbf W_k|$: the scale of the rounding of $\Phi_k$ itself, which
     /// $\Phi_k - \Phi_0$ keeps.
     pub potential_magnitude: Real,
 }
 
 impl SolidSums {
-    /// The sums over these nodes and their mirror images in the plane $x_{axis} = 0$, for a
+    /// The sums over these nodes and their mirror images in the plane $x\_{axis} = 0$, for a
     /// field with that mirror symmetry: a mirror image changes the sign of a polar vector's
     /// component `axis` and of an axial vector's (a moment's) other two components, so the
     /// sum keeps twice the polar vectors' other components and twice the axial vectors'
@@ -130,8 +130,8 @@ impl SolidSums {
     }
 
     /// The physical integrals for a solid of density `density` (table frame):
-    /// $\mathbf F = -\rho\oint\Phi\,\mathrm d\mathbf S$, $\mathbf M = -\rho\oint\Phi\,\mathbf x\times\mathrm d\mathbf S$,
-    /// $\mathbf M' = \tfrac\rho2\oint|\mathbf x|^2\,\mathrm d\mathbf S\times\mathbf a$,
+    /// $\mathbf F = -\rho\oint\Phi\\,\mathrm d\mathbf S$, $\mathbf M = -\rho\oint\Phi\\,\mathbf x\times\mathrm d\mathbf S$,
+    /// $\mathbf M' = \tfrac\rho2\oint|\mathbf x|^2\\,\mathrm d\mathbf S\times\mathbf a$,
     /// $V = \tfrac\rho3\oint(\Phi\mathbf x + \tfrac12|\mathbf x|^2\mathbf a)\cdot\mathrm d\mathbf S$.
     pub fn integrals(&self, density: Real, evaluations: usize) -> SolidIntegrals {
         SolidIntegrals {
@@ -148,14 +148,14 @@ impl SolidSums {
 /// body's field, in the frame of its node table, torques about its centroid.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolidIntegrals {
-    /// $\mathbf F = -\rho\oint\Phi\,\mathrm d\mathbf S$ (force on the solid).
+    /// $\mathbf F = -\rho\oint\Phi\\,\mathrm d\mathbf S$ (force on the solid).
     pub force: Vec3,
-    /// $\mathbf M = -\rho\oint\Phi\,(\mathbf r-\mathbf o)\times\mathrm d\mathbf S$.
+    /// $\mathbf M = -\rho\oint\Phi\\,(\mathbf r-\mathbf o)\times\mathrm d\mathbf S$.
     pub torque: Vec3,
-    /// $\mathbf M = \tfrac\rho2\oint|\mathbf r-\mathbf o|^2\,\mathrm d\mathbf S\times\mathbf a$: the
+    /// $\mathbf M = \tfrac\rho2\oint|\mathbf r-\mathbf o|^2\\,\mathrm d\mathbf S\times\mathbf a$: the
     /// same torque by the second form; the two agree to quadrature accuracy.
     pub torque_gradient_form: Vec3,
-    /// $V = \rho\int\Phi\,\mathrm dV$ (negative); valid when the source's matter is outside the
+    /// $V = \rho\int\Phi\\,\mathrm dV$ (negative); valid when the source's matter is outside the
     /// solid.
     pub potential_energy: Real,
     /// Field evaluations spent.
@@ -283,13 +283,13 @@ impl NodeConstants {
 pub(crate) struct SolidBlock {
     /// $\sum(\Phi - \Phi_0)\mathbf W$.
     pub(crate) flux: Vec3,
-    /// $\sum(\Phi - \Phi_0)\,\mathbf x\times\mathbf W$.
+    /// $\sum(\Phi - \Phi_0)\\,\mathbf x\times\mathbf W$.
     pub(crate) moment: Vec3,
-    /// $\sum\tfrac12|\mathbf x|^2\,\mathbf W\times\mathbf a$.
+    /// $\sum\tfrac12|\mathbf x|^2\\,\mathbf W\times\mathbf a$.
     pub(crate) gradient_moment: Vec3,
     /// $\sum(\Phi\mathbf x + \tfrac12|\mathbf x|^2\mathbf a)\cdot\mathbf W$.
     pub(crate) energy: Real,
-    /// $\sum\mathbf x\,(\mathbf a\cdot\mathbf W)$ (far away only).
+    /// $\sum\mathbf x\\,(\mathbf a\cdot\mathbf W)$ (far away only).
     pub(crate) acceleration_flux: Vec3,
 }
 
@@ -300,7 +300,7 @@ pub(crate) struct SolidMagnitudes {
     pub(crate) flux: Real,
     /// $\sum|\Phi - \Phi_0||\mathbf x\times\mathbf W|$.
     pub(crate) moment: Real,
-    /// $\sum|\Phi\,\mathbf x\cdot\mathbf W| + |\tfrac12|\mathbf x|^2\mathbf a\cdot\mathbf W|$.
+    /// $\sum|\Phi\\,\mathbf x\cdot\mathbf W| + |\tfrac12|\mathbf x|^2\mathbf a\cdot\mathbf W|$.
     pub(crate) energy: Real,
     /// $\sum|\mathbf x||\mathbf a\cdot\mathbf W|$ (far away only).
     pub(crate) acceleration: Real,
@@ -533,22 +533,22 @@ pub fn integrate_over_solid<P: Potential + ?Sized>(
 /// $\mathbf c$, $\mathbf x = \mathbf r - \mathbf c$, $a_n = \mathbf a\cdot\hat{\mathbf n}$).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct LaminaSums {
-    /// $\sum_k w_k \Phi_k \approx \iint\Phi\,\mathrm dA$.
+    /// $\sum_k w_k \Phi_k \approx \iint\Phi\\,\mathrm dA$.
     pub area_potential: Real,
-    /// $\sum_k w_k a_{n,k}$.
+    /// $\sum_k w_k a\_{n,k}$.
     pub area_normal_acceleration: Real,
-    /// $\sum_k w_k a_{n,k}\, \mathbf x_k\times\hat{\mathbf n}$.
+    /// $\sum_k w_k a\_{n,k}\\, \mathbf x_k\times\hat{\mathbf n}$.
     pub area_normal_moment: Vec3,
     /// $\sum_k w_k \mathbf a_k$ (plain area form of the force, a check).
     pub area_acceleration: Vec3,
-    /// $\sum_k w_k\, \mathbf x_k\times\mathbf a_k$ (plain area form of the torque, a check).
+    /// $\sum_k w_k\\, \mathbf x_k\times\mathbf a_k$ (plain area form of the torque, a check).
     pub area_moment: Vec3,
-    /// $\sum_i (\Phi(\boldsymbol\rho_i) - \Phi_0)\,\boldsymbol\nu_i \approx \oint\Phi\,\hat{\boldsymbol\nu}\,\mathrm dl$,
-    /// $\Phi_0$ the source's potential at the centre ($\oint\hat{\boldsymbol\nu}\,\mathrm dl = 0$).
+    /// $\sum_i (\Phi(\boldsymbol\rho_i) - \Phi_0)\\,\boldsymbol\nu_i \approx \oint\Phi\\,\hat{\boldsymbol\nu}\\,\mathrm dl$,
+    /// $\Phi_0$ the source's potential at the centre ($\oint\hat{\boldsymbol\nu}\\,\mathrm dl = 0$).
     pub rim_potential_flux: Vec3,
-    /// $\sum_k w_k |a_{n,k}| + \sum_i |\Phi_i - \Phi_0|\,|\boldsymbol\nu_i|$: the size of the force's terms.
+    /// $\sum_k w_k |a\_{n,k}| + \sum_i |\Phi_i - \Phi_0|\\,|\boldsymbol\nu_i|$: the size of the force's terms.
     pub force_magnitude: Real,
-    /// $\sum_k w_k |a_{n,k}|\,|\mathbf x_k|$: the size of the torque's terms.
+    /// $\sum_k w_k |a\_{n,k}|\\,|\mathbf x_k|$: the size of the torque's terms.
     pub moment_magnitude: Real,
 }
 
@@ -580,8 +580,8 @@ impl LaminaSums {
     }
 
     /// The physical integrals for surface density σ and unit normal $\hat{\mathbf n}$:
-    /// $\mathbf F = \sigma\hat{\mathbf n}\iint a_n\,\mathrm dA - \sigma\oint\Phi\hat{\boldsymbol\nu}\,\mathrm dl$,
-    /// $\mathbf M = \sigma\iint a_n\,\mathbf x\times\hat{\mathbf n}\,\mathrm dA$, $V = \sigma\iint\Phi\,\mathrm dA$.
+    /// $\mathbf F = \sigma\hat{\mathbf n}\iint a_n\\,\mathrm dA - \sigma\oint\Phi\hat{\boldsymbol\nu}\\,\mathrm dl$,
+    /// $\mathbf M = \sigma\iint a_n\\,\mathbf x\times\hat{\mathbf n}\\,\mathrm dA$, $V = \sigma\iint\Phi\\,\mathrm dA$.
     pub fn integrals(
         &self,
         surface_density: Real,
@@ -604,15 +604,15 @@ impl LaminaSums {
 /// about the disk centre), with the plain area forms as checks.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LaminaIntegrals {
-    /// $\sigma\hat{\mathbf n}\iint a_n\,\mathrm dA - \sigma\oint\Phi\,\hat{\boldsymbol\nu}\,\mathrm dl$.
+    /// $\sigma\hat{\mathbf n}\iint a_n\\,\mathrm dA - \sigma\oint\Phi\\,\hat{\boldsymbol\nu}\\,\mathrm dl$.
     pub force: Vec3,
-    /// $\sigma\iint a_n\,(\mathbf r-\mathbf c)\times\hat{\mathbf n}\,\mathrm dA$.
+    /// $\sigma\iint a_n\\,(\mathbf r-\mathbf c)\times\hat{\mathbf n}\\,\mathrm dA$.
     pub torque: Vec3,
-    /// $\sigma\iint\mathbf a\,\mathrm dA$: the same force by the area form.
+    /// $\sigma\iint\mathbf a\\,\mathrm dA$: the same force by the area form.
     pub force_area_form: Vec3,
-    /// $\sigma\iint(\mathbf r-\mathbf c)\times\mathbf a\,\mathrm dA$: the same torque by the area form.
+    /// $\sigma\iint(\mathbf r-\mathbf c)\times\mathbf a\\,\mathrm dA$: the same torque by the area form.
     pub torque_area_form: Vec3,
-    /// $V = \sigma\iint\Phi\,\mathrm dA$ (negative).
+    /// $V = \sigma\iint\Phi\\,\mathrm dA$ (negative).
     pub potential_energy: Real,
     /// Field evaluations spent (area and rim nodes).
     pub evaluations: usize,

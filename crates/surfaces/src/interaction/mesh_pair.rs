@@ -7,13 +7,13 @@
 //! ($\mathbf n_fA_f$ times a rule's weight fractions, [`crate::mesh`]). Face $f$, of longest
 //! edge $h_f$, is at distance $D_f$ from the other body's singular set (its focal set for an
 //! ellipsoid or spheroid, the disk itself, a polyhedron's circumscribing ball), less $h_f/2$;
-//! at level $\ell$ of the ladder [`LEVELS`] with rule order $n_\ell$ ($n^2$ points, degree
-//! $2n-1$) and subdivision threshold $\theta_\ell$ it is cut into $k_f^2$ triangles, $k_f =
-//! \lceil h_f/(\theta_\ell D_f)\rceil$. The ladder starts at the first level whose predicted
+//! at level $\ell$ of the ladder [`LEVELS`] with rule order $n\_\ell$ ($n^2$ points, degree
+//! $2n-1$) and subdivision threshold $\theta\_\ell$ it is cut into $k_f^2$ triangles, $k_f =
+//! \lceil h_f/(\theta\_\ell D_f)\rceil$. The ladder starts at the first level whose predicted
 //! error $\max_f (h_f/(8k_fD_f))^{2n}$ is within 10 tolerances and stops when two successive
 //! levels agree to the tolerance, returning the finer, as the engine's other rules do. The
 //! estimate is the change between the levels, plus the disagreement of the two torque forms and
-//! of the two force forms ($-\rho\oint\Phi\,\mathrm d\mathbf S$ and $\rho\oint\mathbf x\,(\mathbf
+//! of the two force forms ($-\rho\oint\Phi\\,\mathrm d\mathbf S$ and $\rho\oint\mathbf x\\,(\mathbf
 //! a\cdot\mathrm d\mathbf S)$, equal since $\nabla\cdot\mathbf a = 0$ in the integrated body),
 //! plus the rounding bound ($4\varepsilon\sum_k|t_k|$ per sum), plus the expansion's truncation
 //! bound below.
@@ -31,9 +31,9 @@
 //!
 //! Over the mesh in the partner's field, or over the partner's surface in the polyhedron's
 //! field (the engine's rules with the polyhedron as a field-only body; the truncation bound is
-//! then added from the geometry: $\rho_X b\,S_X\Phi_{\max}$ for the force and the like, with
-//! $\Phi_{\max} = GM/d_{\min}$). The predicted cost of each is its node count times the cost
-//! of the field there (a polyhedron's: about $4.5\,(N+2)^2$ ns by its expansion of degree $N$,
+//! then added from the geometry: $\rho_X b\\,S_X\Phi\_{\max}$ for the force and the like, with
+//! $\Phi\_{\max} = GM/d\_{\min}$). The predicted cost of each is its node count times the cost
+//! of the field there (a polyhedron's: about $4.5\\,(N+2)^2$ ns by its expansion of degree $N$,
 //! 50 ns per face directly; an ellipsoid's 100 ns); the cheaper is taken.
 //!
 //! # Performance (certified $10^{-10}$; example `polyhedron_pairs`, release, serial CPU time

@@ -7,18 +7,18 @@
 //! centroid $\mathbf c_A$, $\mathbf x = \mathbf r - \mathbf c_A$) in the field $\Phi_B$ of a body B whose
 //! matter lies outside A feels
 //!
-//! $$ \mathbf F_A = \rho_A\!\int_A \mathbf a_B\,\mathrm dV = -\rho_A\oint_{S_A}\Phi_B\,\mathrm d\mathbf S
+//! $$ \mathbf F_A = \rho_A\\!\int_A \mathbf a_B\\,\mathrm dV = -\rho_A\oint\_{S_A}\Phi_B\\,\mathrm d\mathbf S
 //!    \qquad\text{(the paper's Eq. 2)}, $$
 //!
-//! $$ \mathbf M_A = \rho_A\!\int_A \mathbf x\times\mathbf a_B\,\mathrm dV
-//!    = -\rho_A\oint\Phi_B\,\mathbf x\times\mathrm d\mathbf S
-//!    = \frac{\rho_A}{2}\oint|\mathbf x|^2\,\mathrm d\mathbf S\times\mathbf a_B , $$
+//! $$ \mathbf M_A = \rho_A\\!\int_A \mathbf x\times\mathbf a_B\\,\mathrm dV
+//!    = -\rho_A\oint\Phi_B\\,\mathbf x\times\mathrm d\mathbf S
+//!    = \frac{\rho_A}{2}\oint|\mathbf x|^2\\,\mathrm d\mathbf S\times\mathbf a_B , $$
 //!
 //! the two torque forms (its torque1, torque2) following from $\mathbf x\times\mathbf a = \nabla\times(\Phi\mathbf x)$
 //! and $\mathbf x\times\mathbf a = \tfrac12\nabla\times(|\mathbf x|^2\mathbf a)$ (as $\nabla\times\mathbf a = 0$), and the
 //! mutual potential energy
 //!
-//! $$ V = \rho_A\!\int_A\Phi_B\,\mathrm dV = \frac{\rho_A}{3}\oint\Big[\Phi_B\,\mathbf x + \tfrac12|\mathbf x|^2\,\mathbf a_B\Big]\cdot\mathrm d\mathbf S < 0 $$
+//! $$ V = \rho_A\\!\int_A\Phi_B\\,\mathrm dV = \frac{\rho_A}{3}\oint\Big[\Phi_B\\,\mathbf x + \tfrac12|\mathbf x|^2\\,\mathbf a_B\Big]\cdot\mathrm d\mathbf S < 0 $$
 //!
 //! (the paper's pot_energy with $U = -V$), from $\nabla\cdot(\Phi\mathbf x + \tfrac12|\mathbf x|^2\mathbf a) = 3\Phi - \tfrac12|\mathbf x|^2\nabla^2\Phi$,
 //! **valid only when $\nabla^2\Phi_B = 0$ inside A**, i.e. B's matter outside A. B feels
@@ -27,10 +27,10 @@
 //!
 //! $$ \mathbf M_B = -\mathbf M_A - (\mathbf c_A - \mathbf c_B)\times\mathbf F_A . $$
 //!
-//! A uniform disk (surface density σ, normal $\hat{\mathbf n}$) is a lamina: $V = \sigma\iint\Phi_B\,\mathrm dA$,
-//! the normal force $\sigma\hat{\mathbf n}\iint\mathbf a_B\cdot\hat{\mathbf n}\,\mathrm dA$, the in-plane force
-//! $-\sigma\oint\Phi_B\,\hat{\boldsymbol\nu}\,\mathrm dl$ around the rim, the torque
-//! $\sigma\iint(\mathbf a_B\cdot\hat{\mathbf n})\,\mathbf x\times\hat{\mathbf n}\,\mathrm dA$ ([`crate::lamina`]).
+//! A uniform disk (surface density σ, normal $\hat{\mathbf n}$) is a lamina: $V = \sigma\iint\Phi_B\\,\mathrm dA$,
+//! the normal force $\sigma\hat{\mathbf n}\iint\mathbf a_B\cdot\hat{\mathbf n}\\,\mathrm dA$, the in-plane force
+//! $-\sigma\oint\Phi_B\\,\hat{\boldsymbol\nu}\\,\mathrm dl$ around the rim, the torque
+//! $\sigma\iint(\mathbf a_B\cdot\hat{\mathbf n})\\,\mathbf x\times\hat{\mathbf n}\\,\mathrm dA$ ([`crate::lamina`]).
 //!
 //! Every sign above is checked by the tests: finite differences of $V$ in B's position and
 //! orientation, independent volume integrals, and the closed forms below.
@@ -39,9 +39,9 @@
 //!
 //! 1. **Point formula.** If A or B is a point mass or a homogeneous sphere S (mass $m_S$, centre
 //!    $\mathbf c_S$) and the other body O lies outside it, then since $\Phi_O$ is harmonic in S its
-//!    ball averages are centre values: $\mathbf F_S = m_S\,\mathbf a_O(\mathbf c_S)$,
-//!    $V = m_S\,\Phi_O(\mathbf c_S)$, no torque on S (only the degree-2 harmonic could contribute
-//!    and its contribution is $\epsilon_{ijk}Q_{kj} = 0$), and O's torque from the balance.
+//!    ball averages are centre values: $\mathbf F_S = m_S\\,\mathbf a_O(\mathbf c_S)$,
+//!    $V = m_S\\,\Phi_O(\mathbf c_S)$, no torque on S (only the degree-2 harmonic could contribute
+//!    and its contribution is $\epsilon\_{ijk}Q\_{kj} = 0$), and O's torque from the balance.
 //! 2. **Coplanar disks.** Conway's closed form ([`surfgrav_potentials::disk_pair`]); no torques.
 //! 3. **Surface integral by fixed rules** over one body's surface in the other's field, on a
 //!    ladder of tensor rules (trapezoid in azimuth after a clustering map, Gauss–Legendre across;
@@ -98,7 +98,7 @@
 //! enters the error estimate ([`ROUNDING_PER_TERM`]); the force's bound adds the absolute
 //! rounding of $\Phi_B$ itself, $4\epsilon\sum_k|\Phi_k||\mathbf W_k|$, which the difference
 //! keeps. That term dominates far away and for flat bodies (whose faces' terms cancel), where
-//! the acceleration form $\rho\oint\mathbf x\,(\mathbf a\cdot\mathrm d\mathbf S)$ is summed
+//! the acceleration form $\rho\oint\mathbf x\\,(\mathbf a\cdot\mathrm d\mathbf S)$ is summed
 //! too and used when its bound is lower ([`FAR_FIELD_RATIO`], [`CANCELLATION_RATIO`]).
 //!
 //! # Performance

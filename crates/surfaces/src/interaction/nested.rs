@@ -6,7 +6,7 @@
 //! # Why the azimuth–height form suits Fejér's rule
 //!
 //! On a slice $z$ of the ellipsoid $x = a s\cos\varphi$, $y = b s\sin\varphi$,
-//! $s = \sqrt{1 - z^2/c^2}$, the area vector per $\mathrm d\varphi\,\mathrm dz$ is
+//! $s = \sqrt{1 - z^2/c^2}$, the area vector per $\mathrm d\varphi\\,\mathrm dz$ is
 //! $(b s\cos\varphi,\ a s\sin\varphi,\ ab z/c^2)$. Each integrand is a smooth function of
 //! $(s\cos\varphi, s\sin\varphi, z)$ times such a vector, and its azimuthal integral is then a
 //! smooth function of $s^2 = 1 - z^2/c^2$: the square root at the poles cancels once the
@@ -66,7 +66,7 @@ fn cache() -> &'static Mutex<HashMap<RuleKey, Arc<NestedRuleSet>>> {
     CACHE.get_or_init(|| Mutex::new(HashMap::new()))
 }
 
-/// Rounds a base up to the form $m 2^e$, $m \in \{4, 5, 6, 7\}$ (or 1, 2, 3 below 4), so that few
+/// Rounds a base up to the form $m 2^e$, $m \in \\{4, 5, 6, 7\\}$ (or 1, 2, 3 below 4), so that few
 /// distinct rules are ever built.
 pub(crate) fn round_base(n: usize) -> usize {
     if n <= 4 {
@@ -143,9 +143,9 @@ pub(crate) fn rule_set(
 }
 
 /// Components of the nested integrand: $\Phi - \Phi_0$ times $\mathrm d\mathbf S$ (3), times
-/// $\mathbf x\times\mathrm d\mathbf S$ (3), $\tfrac12|\mathbf x|^2\,\mathrm d\mathbf S\times\mathbf a$ (3),
+/// $\mathbf x\times\mathrm d\mathbf S$ (3), $\tfrac12|\mathbf x|^2\\,\mathrm d\mathbf S\times\mathbf a$ (3),
 /// the energy integrand (1), the magnitudes of the force, torque and energy terms for the
-/// rounding bound (3), $\mathbf x\,(\mathbf a\cdot\mathrm d\mathbf S)$ (3) and the magnitudes
+/// rounding bound (3), $\mathbf x\\,(\mathbf a\cdot\mathrm d\mathbf S)$ (3) and the magnitudes
 /// $|\mathbf x||\mathbf a\cdot\mathrm d\mathbf S|$, $|\Phi||\mathrm d\mathbf S|$ (2), as in
 /// [`super::kernel`]'s solid loop.
 pub(crate) const COMPONENTS: usize = 18;

@@ -3,9 +3,9 @@
 //! For bodies of known convex shape (points, ellipsoids, disks) the test is exact: the
 //! Perram–Wertheim contact function (J. Comput. Phys. 58, 1985)
 //!
-//! $$ F = \max_{0\le\lambda\le1}\ \lambda(1-\lambda)\,\mathbf d^{\mathsf T}\big[(1-\lambda)\,\mathsf A + \lambda\,\mathsf B\big]^{-1}\mathbf d, $$
+//! $$ F = \max\_{0\le\lambda\le1}\ \lambda(1-\lambda)\\,\mathbf d^{\mathsf T}\big[(1-\lambda)\\,\mathsf A + \lambda\\,\mathsf B\big]^{-1}\mathbf d, $$
 //!
-//! with $\mathbf d$ the centroid separation and $\mathsf A = R\,\mathrm{diag}(a^2, b^2, c^2)\,R^{\mathsf T}$
+//! with $\mathbf d$ the centroid separation and $\mathsf A = R\\,\mathrm{diag}(a^2, b^2, c^2)\\,R^{\mathsf T}$
 //! the (world-frame) shape matrix of each ellipsoid, is the square of the factor by which both
 //! bodies must be scaled about their centroids to touch: $F > 1$ apart, $F = 1$ touching,
 //! $F < 1$ overlapping (for two spheres $F = d^2/(R_A + R_B)^2$). The function of $\lambda$ is
@@ -49,7 +49,7 @@ fn shape_matrix(body: &Body, pose: &Pose) -> Option<Matrix3<Real>> {
     Some(r.matrix() * Matrix3::from_diagonal(&diag) * r.matrix().transpose())
 }
 
-/// $\lambda(1-\lambda)\,\mathbf d^{\mathsf T}C^{-1}\mathbf d$, or `None` where $C$ is singular.
+/// $\lambda(1-\lambda)\\,\mathbf d^{\mathsf T}C^{-1}\mathbf d$, or `None` where $C$ is singular.
 fn contact_function(lambda: Real, a: &Matrix3<Real>, b: &Matrix3<Real>, d: &Vec3) -> Option<Real> {
     let c = a * (1.0 - lambda) + b * lambda;
     let u = c.lu().solve(d)?;

@@ -23,11 +23,11 @@
 //! | equatorial plane, sphere or prolate A | 0.36–0.71 | 0.46–0.89 |
 //! | 45° above the plane | 0.42–0.85 | 0.67–1.0 |
 //!
-//! so $\kappa = 0.38 + 0.3\,|\sin\beta| + 0.2\,\min(c/a, a/c)^2$ for elevation β (times 1.5 for
+//! so $\kappa = 0.38 + 0.3\\,|\sin\beta| + 0.2\\,\min(c/a, a/c)^2$ for elevation β (times 1.5 for
 //! the polar-angle form, 0.4 + 0.3|sin β| radially for a lamina), rounded up to a tabulated
 //! value. A mismatch costs nodes, never accuracy: both directions are refined at every step.
 //!
-//! The engine steps $t \to \max(t + 2, \lceil r t\rceil)$ with $r = 1 + 1/\log_{10}(1/\tau)$ for
+//! The engine steps $t \to \max(t + 2, \lceil r t\rceil)$ with $r = 1 + 1/\log\_{10}(1/\tau)$ for
 //! the tolerance τ (at least 1.08): with geometric convergence, the error of the finer level
 //! is then at most a tenth of the coarser one's once the coarser one reaches τ, so the change
 //! between them bounds the finer level's error.
@@ -37,7 +37,7 @@
 //! Near contact the integrand varies fastest on the side of the surface facing the other body.
 //! The trapezoid rule in $\psi$ is applied after the periodic conformal (Möbius) map
 //!
-//! $$ \varphi(\psi) = 2\arctan\!\big(\varepsilon\tan\tfrac\psi2\big), \qquad
+//! $$ \varphi(\psi) = 2\arctan\\!\big(\varepsilon\tan\tfrac\psi2\big), \qquad
 //!    \varphi'(\psi) = \frac{\varepsilon}{\cos^2\frac\psi2 + \varepsilon^2\sin^2\frac\psi2}, $$
 //!
 //! a real-analytic bijection of the circle that puts nodes $1/\varepsilon$ times denser at
@@ -45,7 +45,7 @@
 //! analytic and periodic, it keeps the trapezoid rule's geometric convergence; it moves the
 //! integrand's complex singularities near $\varphi = 0$ away from the real axis. Nodes sit at
 //! $\psi_j = -\pi + (j + \tfrac12)h$, symmetric about $\psi = 0$ with none on the mirror plane
-//! $\varphi \in \{0, \pi\}$, so a table can hold only the half $\varphi \in (0, \pi)$ when the field
+//! $\varphi \in \\{0, \pi\\}$, so a table can hold only the half $\varphi \in (0, \pi)$ when the field
 //! is mirror-symmetric.
 
 use super::body::BodyShape;
