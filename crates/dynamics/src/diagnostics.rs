@@ -20,6 +20,9 @@ use crate::model::{InteractionError, InteractionModel};
 use crate::state::{Sample, TwoBodyState};
 use surfgrav_potentials::{Real, Vec3};
 
+/// Neumaier's compensated sum: the workspace's one (`surfgrav_quadrature::CompensatedSum`).
+pub use surfgrav_surfaces::CompensatedSum;
+
 /// Translational kinetic energy $T$.
 pub fn kinetic_energy(model: &dyn InteractionModel, state: &TwoBodyState) -> Real {
     let spin = |inertia: Option<surfgrav_potentials::InertiaTensor>, body: &crate::BodyState| {
@@ -69,31 +72,6 @@ pub fn angular_momentum(model: &dyn InteractionModel, state: &TwoBodyState) -> V
         + state.body_b.position.cross(&state.body_b.velocity) * model.mass_b()
         + spin_angular_momentum(model.inertia_a(), &state.body_a)
         + spin_angular_momentum(model.inertia_b(), &state.body_b)
-}
-
-/// Neumaier's compensated sum.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct CompensatedSum {
-    sum: Real,
-    compensation: Real,
-}
-
-impl CompensatedSum {
-    /// Adds `x`.
-    pub fn add(&mut self, x: Real) {
-        let t = self.sum + x;
-        if self.sum.abs() >= x.abs() {
-            self.compensation += (self.sum - t) + x;
-        } else {
-            self.compensation += (x - t) + self.sum;
-        }
-        self.sum = t;
-    }
-
-    /// The sum.
-    pub fn value(&self) -> Real {
-        self.sum + self.compensation
-    }
 }
 
 /// Streaming statistics of a series $x_k$ observed at times $t_k$.

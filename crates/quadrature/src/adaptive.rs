@@ -75,6 +75,7 @@
 //! radius above it in 74 925 (1.8 ms).
 
 use crate::gauss_kronrod::{GAUSS_7_WEIGHTS, KRONROD_15_NODES, KRONROD_15_WEIGHTS};
+use crate::sum::CompensatedSum;
 use crate::tensor::Rectangle;
 use crate::QuadratureError;
 use std::cmp::Ordering;
@@ -341,10 +342,7 @@ impl<const N: usize> AdaptiveCubature<N> {
                 error[c].add(region.error[c]);
             }
         }
-        (
-            value.map(CompensatedSum::total),
-            error.map(CompensatedSum::total),
-        )
+        (value.map(|sum| sum.value()), error.map(|sum| sum.value()))
     }
 }
 
@@ -365,29 +363,6 @@ fn max_norm<const N: usize>(values: &[f64; N]) -> f64 {
     values
         .iter()
         .fold(0.0, |largest, value| largest.max(value.abs()))
-}
-
-/// Neumaier's compensated sum.
-#[derive(Debug, Clone, Copy, Default)]
-struct CompensatedSum {
-    sum: f64,
-    compensation: f64,
-}
-
-impl CompensatedSum {
-    fn add(&mut self, term: f64) {
-        let sum = self.sum + term;
-        self.compensation += if self.sum.abs() >= term.abs() {
-            (self.sum - sum) + term
-        } else {
-            (term - sum) + self.sum
-        };
-        self.sum = sum;
-    }
-
-    fn total(self) -> f64 {
-        self.sum + self.compensation
-    }
 }
 
 /// A rectangle as plain bounds.

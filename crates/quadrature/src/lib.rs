@@ -31,6 +31,9 @@
 //! # Ok::<(), surfgrav_quadrature::QuadratureError>(())
 //! ```
 //!
+//! [`CompensatedSum`] is the workspace's one compensated (Neumaier) running sum; the other
+//! crates re-export it.
+//!
 //! Errors: constructors validate their input and return [`QuadratureError`]; the adaptive
 //! integrator reports a missed tolerance in its result ([`Termination`]) and rejects a
 //! non-finite integrand value with an error.
@@ -44,6 +47,7 @@ pub mod gauss_legendre;
 pub mod nested;
 pub mod periodic_trapezoid;
 pub mod rule;
+pub mod sum;
 pub mod tensor;
 pub mod tolerance;
 
@@ -59,4 +63,5 @@ pub use nested::{
 };
 pub use periodic_trapezoid::PeriodicTrapezoid;
 pub use rule::{Interval, Rule1D};
+pub use sum::CompensatedSum;
 pub use tensor::{Rectangle, TensorNode, TensorProductRule};
