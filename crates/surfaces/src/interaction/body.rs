@@ -48,6 +48,25 @@ pub(crate) enum SourceField {
     Custom(Arc<dyn Potential>),
 }
 
+/// `with_field!(field, |f| expr)`: evaluates `expr` with `f` bound to the concrete potential
+/// (one monomorphised copy per built-in kind, `dyn Potential` for user potentials).
+macro_rules! with_field {
+    ($field:expr, |$f:ident| $body:expr) => {
+        match $field {
+            $crate::interaction::body::SourceField::PointMass($f) => $body,
+            $crate::interaction::body::SourceField::Sphere($f) => $body,
+            $crate::interaction::body::SourceField::Spheroid($f) => $body,
+            $crate::interaction::body::SourceField::Ellipsoid($f) => $body,
+            $crate::interaction::body::SourceField::Disk($f) => $body,
+            $crate::interaction::body::SourceField::Custom(custom) => {
+                let $f: &dyn surfgrav_potentials::Potential = custom.as_ref();
+                $body
+            }
+        }
+    };
+}
+pub(crate) use with_field;
+
 /// Reflection symmetries of a body's field about planes through its centroid.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum FieldSymmetry {

@@ -126,7 +126,9 @@
 //! centroids for bodies of unknown shape.
 
 mod aimed;
+mod assembly;
 mod body;
+mod closed_form;
 mod engine;
 mod error;
 mod kernel;
@@ -135,6 +137,8 @@ pub mod nested;
 mod options;
 pub mod overlap;
 pub mod rules;
+mod strategy;
+mod surface_choice;
 pub mod work_precision;
 
 pub use body::{Body, BodyShape};

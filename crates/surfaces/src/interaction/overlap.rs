@@ -19,6 +19,9 @@
 //! other body, neither centroid inside the other body).
 
 use super::body::{Body, BodyShape, ALIGNMENT};
+use super::error::InteractionError;
+use super::kernel::FrameMap;
+use super::rules::{NodeTable, Parametrisation, TableKey};
 use crate::{Real, Vec3};
 use nalgebra::Matrix3;
 use surfgrav_potentials::{Pose, Region};
@@ -153,4 +156,68 @@ pub(crate) fn contact(a: &Body, pose_a: &Pose, b: &Body, pose_b: &Pose) -> Conta
         }
     }
     classify(best)
+}
+
+/// Checks every node of X's table against Y's region (for a body of unknown shape).
+pub(crate) fn check_nodes(
+    table: &NodeTable,
+    y: &Body,
+    map: &FrameMap,
+) -> Result<(), InteractionError> {
+    let field = y.potential();
+    let separation = map.offset.norm();
+    let check = |points: &[Vec3]| -> Result<(), InteractionError> {
+        for r in points {
+            match field.region(&map.apply(r)) {
+                Region::Outside => {}
+                Region::OnSurface => return Err(InteractionError::Touching { separation }),
+                Region::Inside => return Err(InteractionError::Overlap { separation }),
+            }
+        }
+        Ok(())
+    };
+    match table {
+        NodeTable::Solid(t) => check(t.points()),
+        NodeTable::Lamina(t) => {
+            check(t.area_points())?;
+            check(t.rim_points())
+        }
+    }
+}
+
+/// Neither centroid inside the other body (for bodies of unknown shape), by each body's region
+/// test and, for X's surface, the solid angle it subtends at Y's centroid.
+pub(crate) fn check_centroids(
+    x: &Body,
+    pose_x: &Pose,
+    y: &Body,
+    pose_y: &Pose,
+    separation: Real,
+) -> Result<(), InteractionError> {
+    if y.potential().region(&pose_y.to_body(&pose_x.position)) != Region::Outside
+        || x.potential().region(&pose_x.to_body(&pose_y.position)) != Region::Outside
+    {
+        return Err(InteractionError::Overlap { separation });
+    }
+    if let BodyShape::Surface(_) = x.shape() {
+        let q = pose_x.to_body(&pose_y.position);
+        let table = x.table(TableKey {
+            parametrisation: Parametrisation::AzimuthHeight,
+            transverse: 40,
+            ratio: 4,
+            clustering: 0,
+            half_transverse: false,
+            half_azimuth: false,
+        })?;
+        if let NodeTable::Solid(t) = table {
+            let solid_angle = t.integrate_flux(|r| {
+                let d = r - q;
+                d / d.norm().powi(3)
+            });
+            if solid_angle.abs() > std::f64::consts::TAU {
+                return Err(InteractionError::Overlap { separation });
+            }
+        }
+    }
+    Ok(())
 }

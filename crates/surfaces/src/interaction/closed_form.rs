@@ -1,0 +1,168 @@
+//! Closed-form pairs, tried before any surface integral: the point formula (a point mass or a
+//! homogeneous sphere with any body outside it) and Conway's coplanar disk pair (see the
+//! [module docs](super), methods 1 and 2).
+
+use super::assembly::Values;
+use super::body::{Body, BodyShape, ALIGNMENT};
+use super::error::InteractionError;
+use super::kernel::FrameMap;
+use super::options::{Interaction, Method, Request};
+use super::overlap::{check_nodes, Contact};
+use super::rules::{Parametrisation, TableKey};
+use crate::{Real, Vec3};
+use surfgrav_potentials::{CoplanarDiskPair, Pose, Region, UniformDisk};
+
+/// The relative accuracy reported for the closed forms (the potentials crate's documented
+/// accuracy of the acceleration, which dominates).
+pub const ANALYTIC_RELATIVE_ERROR: Real = 1e-13;
+
+/// The closed form for this pair, if one applies: the point formula when either body is
+/// spherically symmetric (after checking, for a body of unknown shape (`exact` is
+/// [`Contact::Unknown`]), that the formula's assumptions hold), then the coplanar disk pair;
+/// `None` otherwise.
+pub(crate) fn closed_form(
+    a: &Body,
+    pose_a: &Pose,
+    b: &Body,
+    pose_b: &Pose,
+    exact: Contact,
+    separation: Real,
+) -> Result<Option<Interaction>, InteractionError> {
+    if a.is_spherically_symmetric() || b.is_spherically_symmetric() {
+        if exact == Contact::Unknown {
+            check_point_formula(a, pose_a, b, pose_b, separation)?;
+        }
+        return analytic_point(a, pose_a, b, pose_b).map(Some);
+    }
+    analytic_disk_pair(a, pose_a, b, pose_b)
+}
+
+/// Before the point formula with a body O of unknown shape: S's centre, and the nodes of a
+/// sphere's surface when the bounding spheres meet, must lie outside O.
+fn check_point_formula(
+    a: &Body,
+    pose_a: &Pose,
+    b: &Body,
+    pose_b: &Pose,
+    separation: Real,
+) -> Result<(), InteractionError> {
+    let (s, pose_s, o, pose_o) = if a.is_spherically_symmetric() {
+        (a, pose_a, b, pose_b)
+    } else {
+        (b, pose_b, a, pose_a)
+    };
+    let region_error = |region: Region| match region {
+        Region::Outside => Ok(()),
+        Region::OnSurface => Err(InteractionError::Touching { separation }),
+        Region::Inside => Err(InteractionError::Overlap { separation }),
+    };
+    region_error(o.potential().region(&pose_o.to_body(&pose_s.position)))?;
+    if s.has_surface() && separation <= s.bounding_radius() + o.bounding_radius() {
+        let table = s.table(TableKey {
+            parametrisation: Parametrisation::AzimuthHeight,
+            transverse: 24,
+            ratio: 4,
+            clustering: 0,
+            half_transverse: false,
+            half_azimuth: false,
+        })?;
+        let map = FrameMap::between(pose_s, pose_o)?;
+        check_nodes(&table, o, &map)?;
+    }
+    Ok(())
+}
+
+/// The point formula: S (a point or a sphere) feels the other body's field at its centre.
+fn analytic_point(
+    a: &Body,
+    pose_a: &Pose,
+    b: &Body,
+    pose_b: &Pose,
+) -> Result<Interaction, InteractionError> {
+    let (s, pose_s, o, pose_o, s_is_a) = if a.is_spherically_symmetric() {
+        (a, pose_a, b, pose_b, true)
+    } else {
+        (b, pose_b, a, pose_a, false)
+    };
+    let field = o.potential().field_in_world(pose_o, &pose_s.position);
+    let m = s.mass();
+    let f_s = field.acceleration * m;
+    let energy = field.potential * m;
+    let m_o = -(pose_s.position - pose_o.position).cross(&f_s);
+    let values = if s_is_a {
+        Values {
+            force_on_a: f_s,
+            torque_on_a: Vec3::zeros(),
+            torque_on_b: m_o,
+            potential_energy: energy,
+            torque_form_gap: 0.0,
+            rounding: 0.0,
+            request: Request::Everything,
+        }
+    } else {
+        Values {
+            force_on_a: -f_s,
+            torque_on_a: m_o,
+            torque_on_b: Vec3::zeros(),
+            potential_energy: energy,
+            torque_form_gap: 0.0,
+            rounding: 0.0,
+            request: Request::Everything,
+        }
+    };
+    values.finish(
+        Method::AnalyticPoint,
+        None,
+        1,
+        ANALYTIC_RELATIVE_ERROR,
+        None,
+    )
+}
+
+/// Conway's closed form when both bodies are disks in one plane; `None` otherwise.
+fn analytic_disk_pair(
+    a: &Body,
+    pose_a: &Pose,
+    b: &Body,
+    pose_b: &Pose,
+) -> Result<Option<Interaction>, InteractionError> {
+    let (BodyShape::Disk(la), BodyShape::Disk(lb)) = (a.shape(), b.shape()) else {
+        return Ok(None);
+    };
+    let na = pose_a.rotation * Vec3::z();
+    let nb = pose_b.rotation * Vec3::z();
+    let d = pose_b.position - pose_a.position;
+    let distance = d.norm();
+    if na.cross(&nb).norm() > ALIGNMENT || na.dot(&d).abs() > ALIGNMENT * distance {
+        return Ok(None);
+    }
+    let g = a.potential().gravitational_constant();
+    let disk = |radius: Real, body: &Body| -> Result<UniformDisk, InteractionError> {
+        UniformDisk::new(radius, body.mass())
+            .and_then(|disk| disk.with_gravitational_constant(g))
+            .map_err(|_| InteractionError::NonFiniteResult {
+                what: "a uniform disk for the closed form",
+            })
+    };
+    let pair = CoplanarDiskPair::new(&disk(la.radius(), a)?, &disk(lb.radius(), b)?)?;
+    let interaction = pair.interaction(distance)?;
+    let force_on_b = d * (interaction.radial_force / distance);
+    let values = Values {
+        force_on_a: -force_on_b,
+        torque_on_a: Vec3::zeros(),
+        torque_on_b: Vec3::zeros(),
+        potential_energy: interaction.potential_energy,
+        torque_form_gap: 0.0,
+        rounding: 0.0,
+        request: Request::Everything,
+    };
+    values
+        .finish(
+            Method::AnalyticDiskPair,
+            None,
+            1,
+            ANALYTIC_RELATIVE_ERROR,
+            None,
+        )
+        .map(Some)
+}
