@@ -7,8 +7,8 @@
 //! |---|---|
 //! | `interaction.md`, `interaction.csv` | (a) the paper's pair (oblate spheroids a = 1, c = 0.25, m = 1, G = 1, common equatorial plane, B on A's x axis) at separations 2.1, 2.55, 3, 7, 30: for every rule and parametrisation of the engine (single tables of the ladder and the certified ladder in the azimuth–height (AH, the paper's (φ, z)) and polar–azimuth (PA) forms, the nested doubling rule (AH), the adaptive G7K15 cubature (PA)), evaluations, time per interaction (force, torques, energy) and per force-only evaluation, relative errors of the force and of the energy |
 //! | `interaction_force.png/.svg`, `interaction_energy.png/.svg` | the same, error against time per evaluation (force-only time for the force, whole interaction for the energy), log–log, one panel per separation, with the paper's method as one point |
-//! | `dynamics.md`, `dynamics.csv` | (b) paper-2s and (c) paper-2d over t = 0 … 300: for every integrator over a range of steps or tolerances, steps, force evaluations, wall time, energy error and trajectory error |
-//! | `paper_2s.png/.svg`, `paper_2d.png/.svg` | energy error and trajectory error against wall time, log–log |
+//! | `dynamics.md`, `dynamics.csv` | (b) paper-2s and (c) paper-2d over t = 0 … 300, and (d) `kw4-ellipsoids` (1999 KW4 as two rotating triaxial ellipsoids) over the preset's 10 mutual orbits (a quarter orbit in quick mode): for every integrator over a range of steps or tolerances, steps, force evaluations, wall time, energy error, trajectory error and, for (d), attitude error |
+//! | `paper_2s.png/.svg`, `paper_2d.png/.svg`, `kw4_ellipsoids.png/.svg` | energy error, trajectory error (and for (d) attitude error) against wall time, log–log |
 //! | `speedup.md`, `speedup.csv` | time of the paper's method (scipy `dblquad` + RK4, `tools/paper_baseline/`) over surfgrav's for the same task |
 //!
 //! # Errors, and against what
@@ -18,14 +18,17 @@
 //!   against `tests/reference/interactions.json`: an independent volume integration (by
 //!   `tests/reference/interactions.py`) with an estimated relative accuracy of about
 //!   $2\times10^{-16}$. Not against the engine itself.
-//! * Dynamics (b, c): the energy error is $\max_k |E_k - E_0| / |E_0|$ over every accepted
+//! * Dynamics (b, c, d): the energy error is $\max_k |E_k - E_0| / |E_0|$ over every accepted
 //!   step (the total energy with the same model the run used), the trajectory error is
 //!   $\lVert \mathbf r(t\_\mathrm{end}) - \mathbf r\_\mathrm{ref}(t\_\mathrm{end}) \rVert$ for the
 //!   relative position $\mathbf r = \mathbf R_B - \mathbf R_A$ (length units), against a DOP853
 //!   run at relative and absolute tolerance $10^{-14}$ with the same model (so it measures the
 //!   integrator; the model's own error is (a)'s). How far a run at $10^{-13}$ ends from it is
 //!   reported (measured: $1.0\times10^{-9}$ on paper-2s, $1.2\times10^{-9}$ on paper-2d):
-//!   trajectory errors near $10^{-10}$ are the reference's limit, not the run's.
+//!   trajectory errors near $10^{-10}$ are the reference's limit, not the run's. For (d) the
+//!   energy includes the spins' kinetic energy, the trajectory error is in metres, and the
+//!   attitude error is the larger of the two bodies' rotation angles from the reference's
+//!   final attitudes (rad).
 //! * Errors below [`ERROR_FLOOR`] = $10^{-17}$ are reported as $10^{-17}$: below the
 //!   references' own accuracy they carry no information, and a log axis needs a positive value.
 //!
@@ -36,7 +39,10 @@
 //! reported and counted in the speed-up) for every integrator, and with the direct surface
 //! integral at every force evaluation (`EngineModel`, engine tolerance $10^{-12}$) for the
 //! paper's own setting (RK4, Δt = 0.1) and a few adaptive runs. paper-2d runs with the direct
-//! model, which for two coplanar disks is Conway's closed form.
+//! model, which for two coplanar disks is Conway's closed form. `kw4-ellipsoids` runs the
+//! preset's own model (the direct surface integral at every force and torque evaluation, at
+//! the preset's engine tolerance, translation and rotation); its fixed steps are swept around
+//! 100 per mutual orbit as paper-2s's are around Δt = 0.1.
 //!
 //! # Times
 //!
@@ -83,8 +89,15 @@ pub const SEPARATIONS: [f64; 5] = [2.1, 2.55, 3.0, 7.0, 30.0];
 /// End time of the paper's runs.
 pub const PAPER_T_END: f64 = 300.0;
 
-/// Tolerance of the reference runs of (b) and (c).
+/// Tolerance of the reference runs of (b), (c) and (d).
 pub const REFERENCE_TOLERANCE: f64 = 1e-14;
+
+/// The preset of part (d): 1999 KW4 as two triaxial ellipsoids, rotating.
+pub const KW4_SCENE: &str = "kw4-ellipsoids";
+
+/// Length of part (d)'s runs in quick mode, in mutual orbits (the full bench runs the preset's
+/// 10 orbits).
+pub const QUICK_KW4_ORBITS: f64 = 0.25;
 
 /// Runs shorter than 0.2 s are timed this many more times (best kept).
 const REPEATS_OF_SHORT_RUNS: usize = 3;
@@ -200,7 +213,7 @@ pub struct InteractionRow {
 /// One integrator at one setting on one scene (parts b, c).
 #[derive(Debug, Clone, PartialEq)]
 pub struct DynamicsRow {
-    /// `paper-2s` or `paper-2d`.
+    /// `paper-2s`, `paper-2d` or `kw4-ellipsoids`.
     pub scene: String,
     /// Model: "interpolant", "direct engine" or "closed form (disks)".
     pub model: String,
@@ -220,6 +233,10 @@ pub struct DynamicsRow {
     pub energy_error: Option<f64>,
     /// |r(t_end) − r_ref(t_end)| (floored), `None` without a reference or a complete run.
     pub trajectory_error: Option<f64>,
+    /// For rotating bodies, the larger of the two bodies' rotation angles (rad) between the
+    /// final attitudes and the reference's (floored); `None` for the paper's planar scenes,
+    /// without a reference or a complete run.
+    pub attitude_error: Option<f64>,
     /// "completed" or what stopped it.
     pub termination: String,
 }
@@ -281,6 +298,8 @@ pub fn run_bench(
     dynamics.extend(two_s.rows);
     let two_d = paper_2d(options, progress)?;
     dynamics.extend(two_d.rows);
+    let kw4 = kw4_ellipsoids(options, progress)?;
+    dynamics.extend(kw4.rows.iter().cloned());
 
     let speedups = speedups(
         &baseline,
@@ -311,7 +330,12 @@ pub fn run_bench(
         &dynamics_markdown(
             &dynamics,
             two_s.table_seconds,
-            [two_s.reference_spread, two_d.reference_spread],
+            [
+                two_s.reference_spread,
+                two_d.reference_spread,
+                kw4.reference_spread,
+            ],
+            &kw4,
         ),
     )?);
     files.push(write_text(
@@ -340,10 +364,18 @@ pub fn run_bench(
             dynamics_figure(
                 &dynamics,
                 "paper-2s",
+                PAPER_T_END,
                 baseline_run_point(&baseline, two_s.reference_final),
             ),
         ),
-        ("paper_2d", dynamics_figure(&dynamics, "paper-2d", None)),
+        (
+            "paper_2d",
+            dynamics_figure(&dynamics, "paper-2d", PAPER_T_END, None),
+        ),
+        (
+            "kw4_ellipsoids",
+            dynamics_figure(&dynamics, KW4_SCENE, kw4.t_end, None),
+        ),
     ] {
         files.extend(write_figure(&figure, &out.join(stem))?);
     }
@@ -681,7 +713,7 @@ fn sweep(kind: IntegratorKind, paper_step: f64, quick: bool) -> Vec<f64> {
 
 struct RunOutcome {
     row: DynamicsRow,
-    final_relative: Option<Vec3>,
+    final_state: Option<TwoBodyState>,
 }
 
 /// A scene with the model it runs on.
@@ -690,6 +722,11 @@ struct SceneRun<'m> {
     scene: &'m str,
     model_name: &'m str,
     model: &'m dyn InteractionModel,
+    initial: &'m TwoBodyState,
+    /// The bodies rotate: the attitude error is reported too.
+    attitudes: bool,
+    /// Fixed steps are named as fractions of this orbital period (s), if given.
+    period: Option<f64>,
 }
 
 /// Runs one integrator, timing the integration alone; energies are evaluated afterwards from
@@ -699,12 +736,15 @@ fn run_one(
     kind: IntegratorKind,
     setting: f64,
     t_end: f64,
-    reference: Option<Vec3>,
+    reference: Option<&TwoBodyState>,
 ) -> Result<RunOutcome, BenchError> {
     let SceneRun {
         scene,
         model_name,
         model,
+        initial,
+        attitudes,
+        period,
     } = run;
     let (step, tolerance) = if kind.is_adaptive() {
         (1.0, setting)
@@ -713,6 +753,8 @@ fn run_one(
     };
     let setting_text = if kind.is_adaptive() {
         format!("tol {setting:.0e}")
+    } else if let Some(period) = period {
+        format!("dt = T/{:.0} ({setting:.1} s)", period / setting)
     } else {
         format!("dt = {setting}")
     };
@@ -723,10 +765,9 @@ fn run_one(
             context: context.clone(),
             message: e.to_string(),
         })?;
-    let initial = paper_initial_state();
     let mut samples: Vec<Sample> = Vec::new();
     let start = Instant::now();
-    let result = integrator.integrate(model, &initial, 0.0, t_end, &mut |s| samples.push(*s));
+    let result = integrator.integrate(model, initial, 0.0, t_end, &mut |s| samples.push(*s));
     let mut wall_seconds = start.elapsed().as_secs_f64();
     // Short runs are timed again (the same deterministic run), best of several: one run of a
     // few milliseconds is at the mercy of the shared machine.
@@ -739,7 +780,7 @@ fn run_one(
                     message: e.to_string(),
                 })?;
             let start = Instant::now();
-            let repeat = again.integrate(model, &initial, 0.0, t_end, &mut |_| {});
+            let repeat = again.integrate(model, initial, 0.0, t_end, &mut |_| {});
             let t = start.elapsed().as_secs_f64();
             if repeat.is_ok() {
                 wall_seconds = wall_seconds.min(t);
@@ -763,9 +804,10 @@ fn run_one(
                     wall_seconds,
                     energy_error: None,
                     trajectory_error: None,
+                    attitude_error: None,
                     termination: format!("failed: {e}"),
                 },
-                final_relative: None,
+                final_state: None,
             });
         }
     };
@@ -775,7 +817,7 @@ fn run_one(
         Termination::Contact(c) => format!("contact at t = {:.3}", c.sample.time),
         Termination::Escape(e) => format!("escape at t = {:.3}", e.sample.time),
     };
-    let (energy_error, trajectory_error, final_relative) = if completed {
+    let (energy_error, trajectory_error, attitude_error, final_state) = if completed {
         let mut monitor = ConservationMonitor::new(model);
         for s in &samples {
             monitor.observe(s);
@@ -784,15 +826,20 @@ fn run_one(
             context: format!("{context}: energy at t = {t}"),
             message: e.to_string(),
         })?;
-        let fin = summary.last.state.relative_position();
-        let trajectory = reference.map(|r| floored((fin - r).norm()));
+        let fin = summary.last.state;
+        let trajectory =
+            reference.map(|r| floored((fin.relative_position() - r.relative_position()).norm()));
+        let attitude = reference
+            .filter(|_| attitudes)
+            .map(|r| floored(attitude_difference(&fin, r)));
         (
             Some(floored(energy.max_relative_drift)),
             trajectory,
+            attitude,
             Some(fin),
         )
     } else {
-        (None, None, None)
+        (None, None, None, None)
     };
     Ok(RunOutcome {
         row: DynamicsRow {
@@ -806,19 +853,29 @@ fn run_one(
             wall_seconds,
             energy_error,
             trajectory_error,
+            attitude_error,
             termination,
         },
-        final_relative,
+        final_state,
     })
 }
 
-/// The reference relative position at `t_end` (DOP853 at [`REFERENCE_TOLERANCE`]) and its
-/// distance from a run at ten times that tolerance (errors much below it are not resolved).
+/// The larger of the two bodies' rotation angles (rad) between the attitudes of `a` and `b`.
+fn attitude_difference(a: &TwoBodyState, b: &TwoBodyState) -> f64 {
+    a.body_a
+        .orientation
+        .angle_to(&b.body_a.orientation)
+        .max(a.body_b.orientation.angle_to(&b.body_b.orientation))
+}
+
+/// The reference state at `t_end` (DOP853 at [`REFERENCE_TOLERANCE`]) and the distance of a
+/// run at ten times that tolerance from its relative position (errors much below it are not
+/// resolved).
 fn reference_final(
     run: SceneRun<'_>,
     t_end: f64,
     progress: &mut dyn FnMut(&str),
-) -> Result<(Vec3, f64), BenchError> {
+) -> Result<(TwoBodyState, f64), BenchError> {
     let SceneRun {
         scene, model_name, ..
     } = run;
@@ -833,7 +890,7 @@ fn reference_final(
         "{scene}: reference run (dop853, tol {REFERENCE_TOLERANCE:.0e}, {model_name}): {} steps, {:.2} s, {}",
         outcome.row.steps, outcome.row.wall_seconds, outcome.row.termination
     ));
-    let reference = outcome.final_relative.ok_or_else(|| BenchError::Dynamics {
+    let reference = outcome.final_state.ok_or_else(|| BenchError::Dynamics {
         context: format!("{scene} reference run"),
         message: outcome.row.termination.clone(),
     })?;
@@ -842,7 +899,7 @@ fn reference_final(
         IntegratorKind::Dop853,
         10.0 * REFERENCE_TOLERANCE,
         t_end,
-        Some(reference),
+        Some(&reference),
     )?;
     let spread = check
         .row
@@ -861,14 +918,15 @@ fn reference_final(
 fn sweep_all(
     run: SceneRun<'_>,
     paper_step: f64,
-    reference: Vec3,
+    t_end: f64,
+    reference: &TwoBodyState,
     quick: bool,
     progress: &mut dyn FnMut(&str),
 ) -> Result<Vec<DynamicsRow>, BenchError> {
     let mut rows = Vec::new();
     for kind in IntegratorKind::ALL {
         for setting in sweep(kind, paper_step, quick) {
-            let outcome = run_one(run, kind, setting, PAPER_T_END, Some(reference))?;
+            let outcome = run_one(run, kind, setting, t_end, Some(reference))?;
             progress(&dynamics_line(&outcome.row));
             rows.push(outcome.row);
         }
@@ -878,9 +936,12 @@ fn sweep_all(
 
 fn dynamics_line(r: &DynamicsRow) -> String {
     let e = |v: Option<f64>| v.map_or("—".to_string(), |x| format!("{x:.1e}"));
+    let attitude = r
+        .attitude_error
+        .map_or(String::new(), |a| format!(", attitude error {a:.1e} rad"));
     format!(
-        "({}) {}, {}: {} {}: {} steps, {} force evaluations, {:.3} s, energy error {}, trajectory error {}, {}",
-        if r.scene == "paper-2s" { "b" } else { "c" },
+        "({}) {}, {}: {} {}: {} steps, {} force evaluations, {:.3} s, energy error {}, trajectory error {}{attitude}, {}",
+        part_letter(&r.scene),
         r.scene,
         r.model,
         r.integrator,
@@ -892,6 +953,15 @@ fn dynamics_line(r: &DynamicsRow) -> String {
         e(r.trajectory_error),
         r.termination
     )
+}
+
+/// The bench's letter for a scene: (b) paper-2s, (c) paper-2d, (d) kw4-ellipsoids.
+fn part_letter(scene: &str) -> &'static str {
+    match scene {
+        "paper-2s" => "b",
+        "paper-2d" => "c",
+        _ => "d",
+    }
 }
 
 struct SceneOutcome {
@@ -939,9 +1009,19 @@ fn paper_2s(
         scene,
         model_name: fast_name,
         model: &fast,
+        initial: &initial,
+        attitudes: false,
+        period: None,
     };
     let (reference, reference_spread) = reference_final(fast_run, PAPER_T_END, progress)?;
-    let mut rows = sweep_all(fast_run, 0.1, reference, options.quick, progress)?;
+    let mut rows = sweep_all(
+        fast_run,
+        0.1,
+        PAPER_T_END,
+        &reference,
+        options.quick,
+        progress,
+    )?;
 
     // The direct surface integral at every force evaluation: the paper's own setting (RK4,
     // dt = 0.1) over the baseline's shortened run (t = 0 … 3, or 1 in its quick mode), and in
@@ -960,11 +1040,14 @@ fn paper_2s(
         direct_runs.push((IntegratorKind::Dop853, 1e-12, PAPER_T_END));
     }
     for (kind, setting, t_end) in direct_runs {
-        let reference = (t_end == PAPER_T_END).then_some(reference);
+        let reference = (t_end == PAPER_T_END).then_some(&reference);
         let direct_run = SceneRun {
             scene,
             model_name: "direct engine",
             model: &direct,
+            initial: &initial,
+            attitudes: false,
+            period: None,
         };
         let outcome = run_one(direct_run, kind, setting, t_end, reference)?;
         progress(&dynamics_line(&outcome.row));
@@ -973,7 +1056,7 @@ fn paper_2s(
     Ok(SceneOutcome {
         rows,
         table_seconds,
-        reference_final: Some(reference),
+        reference_final: Some(reference.relative_position()),
         reference_spread,
     })
 }
@@ -985,17 +1068,110 @@ fn paper_2d(
     let scene = "paper-2d";
     let model = EngineModel::new(paper_disk()?, paper_disk()?, InteractionOptions::default())
         .map_err(|e| dynamics_error("paper-2d model", e))?;
+    let initial = paper_initial_state();
     let run = SceneRun {
         scene,
         model_name: "closed form (disks)",
         model: &model,
+        initial: &initial,
+        attitudes: false,
+        period: None,
     };
     let (reference, reference_spread) = reference_final(run, PAPER_T_END, progress)?;
-    let rows = sweep_all(run, 0.01, reference, options.quick, progress)?;
+    let rows = sweep_all(run, 0.01, PAPER_T_END, &reference, options.quick, progress)?;
     Ok(SceneOutcome {
         rows,
         table_seconds: 0.0,
-        reference_final: Some(reference),
+        reference_final: Some(reference.relative_position()),
+        reference_spread,
+    })
+}
+
+/// The `kw4-ellipsoids` preset's scene and model, and its Keplerian period (from the initial
+/// relative state).
+fn kw4_scene() -> Result<(crate::scene::Scene, crate::simulate::PreparedModel, f64), BenchError> {
+    let preset = crate::presets::find(KW4_SCENE)
+        .ok_or_else(|| BenchError::Data(format!("no preset {KW4_SCENE}")))?;
+    let scene = preset
+        .scene()
+        .map_err(|e| dynamics_error("kw4-ellipsoids preset", e))?;
+    let prepared =
+        crate::simulate::prepare(&scene).map_err(|e| dynamics_error("kw4-ellipsoids model", e))?;
+    let model = prepared.model();
+    let mu = scene.gravitational_constant * (model.mass_a() + model.mass_b());
+    let r = scene.initial.relative_position().norm();
+    let v = (scene.initial.body_b.velocity - scene.initial.body_a.velocity).norm();
+    let semi_major_axis = 1.0 / (2.0 / r - v * v / mu);
+    let period = 2.0 * std::f64::consts::PI * (semi_major_axis.powi(3) / mu).sqrt();
+    if !(period.is_finite() && period > 0.0) {
+        return Err(BenchError::Data(format!(
+            "{KW4_SCENE}: the initial orbit is not bound (a = {semi_major_axis} m)"
+        )));
+    }
+    Ok((scene, prepared, period))
+}
+
+/// (d) Every integrator on `kw4-ellipsoids` (full 3-D motion with rotation, direct surface
+/// integral): over the preset's whole run (10 mutual orbits), or [`QUICK_KW4_ORBITS`] of an
+/// orbit in quick mode, against DOP853 at [`REFERENCE_TOLERANCE`]. Fixed steps are swept
+/// around 100 per orbit as paper-2s's are around its dt = 0.1.
+/// Part (d)'s rows and what its table needs to say.
+struct Kw4Outcome {
+    rows: Vec<DynamicsRow>,
+    /// End time of the runs (s).
+    t_end: f64,
+    /// Keplerian period of the initial relative orbit (s).
+    period: f64,
+    /// Seconds spent building the model.
+    build_seconds: f64,
+    /// Distance of a run at ten times the reference's tolerance from the reference (m).
+    reference_spread: f64,
+}
+
+fn kw4_ellipsoids(
+    options: &BenchOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Kw4Outcome, BenchError> {
+    let start = Instant::now();
+    let (scene, prepared, period) = kw4_scene()?;
+    let build_seconds = start.elapsed().as_secs_f64();
+    let t_end = if options.quick {
+        QUICK_KW4_ORBITS * period
+    } else {
+        scene.t_end - scene.t_start
+    };
+    progress(&format!(
+        "(d) {KW4_SCENE}: {} ({}), period {period:.1} s, t = 0 … {t_end:.1} s ({:.2} orbits)",
+        prepared.method,
+        if prepared.path.is_rotation() {
+            "translation and rotation"
+        } else {
+            "translation only"
+        },
+        t_end / period
+    ));
+    let run = SceneRun {
+        scene: KW4_SCENE,
+        model_name: prepared.method,
+        model: prepared.model(),
+        initial: &scene.initial,
+        attitudes: prepared.path.is_rotation(),
+        period: Some(period),
+    };
+    let (reference, reference_spread) = reference_final(run, t_end, progress)?;
+    let rows = sweep_all(
+        run,
+        period / 100.0,
+        t_end,
+        &reference,
+        options.quick,
+        progress,
+    )?;
+    Ok(Kw4Outcome {
+        rows,
+        t_end,
+        period,
+        build_seconds,
         reference_spread,
     })
 }
@@ -1399,14 +1575,34 @@ fn interaction_csv(rows: &[InteractionRow]) -> String {
     s
 }
 
-fn dynamics_markdown(rows: &[DynamicsRow], table_seconds: f64, spreads: [f64; 2]) -> String {
+/// `spreads`: paper-2s, paper-2d, kw4-ellipsoids.
+fn dynamics_markdown(
+    rows: &[DynamicsRow],
+    table_seconds: f64,
+    spreads: [f64; 3],
+    kw4: &Kw4Outcome,
+) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "# Integrators on the paper's scenes: error against wall time\n\nInitial state R_A = (−3.5, 0, 0), V_A = (0, 0.2, 0), B mirrored; t = 0 … {PAPER_T_END} unless stated. Energy error: max |E − E0| / |E0| over the accepted steps. Trajectory error: |r(t_end) − r_ref(t_end)| (length units) for r = R_B − R_A, against DOP853 at tolerance {REFERENCE_TOLERANCE:.0e} with the same model ('interpolant' rows and 'direct engine' rows share the interpolant's reference, so the latter include the table's error). Errors floored at {ERROR_FLOOR:.0e}. Wall time of the integration alone; paper-2s's table took {table_seconds:.3} s to build.\n"
+        "# Integrators on the paper's scenes and on 1999 KW4: error against wall time\n\nPaper's scenes: initial state R_A = (−3.5, 0, 0), V_A = (0, 0.2, 0), B mirrored; t = 0 … {PAPER_T_END} unless stated. Energy error: max |E − E0| / |E0| over the accepted steps (E includes the spins' kinetic energy). Trajectory error: |r(t_end) − r_ref(t_end)| (length units) for r = R_B − R_A, against DOP853 at tolerance {REFERENCE_TOLERANCE:.0e} with the same model ('interpolant' rows and 'direct engine' rows share the interpolant's reference, so the latter include the table's error). Errors floored at {ERROR_FLOOR:.0e}. Wall time of the integration alone; paper-2s's table took {table_seconds:.3} s to build.\n"
     );
-    for (scene, spread) in ["paper-2s", "paper-2d"].into_iter().zip(spreads) {
+    let Kw4Outcome {
+        t_end: kw4_t_end,
+        period: kw4_period,
+        build_seconds: kw4_build,
+        ..
+    } = *kw4;
+    for (scene, spread) in ["paper-2s", "paper-2d", KW4_SCENE].into_iter().zip(spreads) {
         let _ = writeln!(s, "\n## {scene}\n");
+        let rotating = scene == KW4_SCENE;
+        if rotating {
+            let _ = writeln!(
+                s,
+                "The `{KW4_SCENE}` preset (1999 KW4 as two triaxial ellipsoids, SI units, full 3-D motion with rotation; every force and torque by the direct surface integral at the preset's tolerance; model built in {kw4_build:.3} s), t = 0 … {kw4_t_end:.1} s: {:.2} mutual orbits of period T = {kw4_period:.1} s (the preset's whole run; {QUICK_KW4_ORBITS} of an orbit in quick mode). Trajectory error in metres; attitude error: the larger of the two bodies' rotation angles (rad) from the reference's final attitudes. Fixed steps are given as fractions of T.\n",
+                kw4_t_end / kw4_period
+            );
+        }
         let _ = writeln!(
             s,
             "DOP853 at tolerance {:.0e} ends {spread:.1e} from the reference: trajectory errors near or below that are the reference's, not the run's.\n",
@@ -1414,13 +1610,23 @@ fn dynamics_markdown(rows: &[DynamicsRow], table_seconds: f64, spreads: [f64; 2]
         );
         let _ = writeln!(
             s,
-            "| model | integrator | setting | t_end | steps | force evaluations | wall s | energy error | trajectory error | end |"
+            "| model | integrator | setting | t_end | steps | force evaluations | wall s | energy error | trajectory error |{} end |",
+            if rotating { " attitude error (rad) |" } else { "" }
         );
-        let _ = writeln!(s, "|---|---|---|---:|---:|---:|---:|---:|---:|---|");
+        let _ = writeln!(
+            s,
+            "|---|---|---|---:|---:|---:|---:|---:|---:|{}---|",
+            if rotating { "---:|" } else { "" }
+        );
         for r in rows.iter().filter(|r| r.scene == scene) {
+            let attitude = if rotating {
+                format!(" {} |", opt_md(r.attitude_error))
+            } else {
+                String::new()
+            };
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {} | {:.4} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {:.4} | {} | {} |{attitude} {} |",
                 r.model,
                 r.integrator,
                 r.setting,
@@ -1439,12 +1645,12 @@ fn dynamics_markdown(rows: &[DynamicsRow], table_seconds: f64, spreads: [f64; 2]
 
 fn dynamics_csv(rows: &[DynamicsRow]) -> String {
     let mut s = String::from(
-        "scene,model,integrator,setting,t_end,steps,force_evaluations,wall_seconds,energy_relative_error,trajectory_error,termination\n",
+        "scene,model,integrator,setting,t_end,steps,force_evaluations,wall_seconds,energy_relative_error,trajectory_error,attitude_error_rad,termination\n",
     );
     for r in rows {
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{:e},{},{},{}",
+            "{},{},{},{},{},{},{},{:e},{},{},{},{}",
             r.scene,
             csv_field(&r.model),
             r.integrator,
@@ -1455,6 +1661,7 @@ fn dynamics_csv(rows: &[DynamicsRow]) -> String {
             r.wall_seconds,
             opt(r.energy_error),
             opt(r.trajectory_error),
+            opt(r.attitude_error),
             csv_field(&r.termination)
         );
     }
@@ -1619,14 +1826,33 @@ fn baseline_run_point(baseline: &Baseline, reference: Option<Vec3>) -> Option<(f
         .then(|| (seconds, floored(energy), floored(trajectory)))
 }
 
-fn dynamics_figure(rows: &[DynamicsRow], scene: &str, baseline: Option<(f64, f64, f64)>) -> Figure {
+/// The error measure drawn in one panel of a dynamics figure.
+#[derive(Clone, Copy, PartialEq)]
+enum Measure {
+    Energy,
+    Trajectory,
+    Attitude,
+}
+
+fn dynamics_figure(
+    rows: &[DynamicsRow],
+    scene: &str,
+    t_end: f64,
+    baseline: Option<(f64, f64, f64)>,
+) -> Figure {
     let mut panels = Vec::new();
-    for energy in [true, false] {
+    let rotating = rows
+        .iter()
+        .any(|r| r.scene == scene && r.attitude_error.is_some());
+    let measures: &[Measure] = if rotating {
+        &[Measure::Energy, Measure::Trajectory, Measure::Attitude]
+    } else {
+        &[Measure::Energy, Measure::Trajectory]
+    };
+    let si = scene == KW4_SCENE;
+    for &measure in measures {
         let mut keys: Vec<(String, String)> = Vec::new();
-        for r in rows
-            .iter()
-            .filter(|r| r.scene == scene && r.t_end == PAPER_T_END)
-        {
+        for r in rows.iter().filter(|r| r.scene == scene && r.t_end == t_end) {
             let key = (r.model.clone(), r.integrator.clone());
             if !keys.contains(&key) {
                 keys.push(key);
@@ -1642,14 +1868,14 @@ fn dynamics_figure(rows: &[DynamicsRow], scene: &str, baseline: Option<(f64, f64
                         r.scene == scene
                             && &r.model == model
                             && &r.integrator == integrator
-                            && r.t_end == PAPER_T_END
+                            && r.t_end == t_end
                             && r.wall_seconds > 0.0
                     })
                     .filter_map(|r| {
-                        let e = if energy {
-                            r.energy_error
-                        } else {
-                            r.trajectory_error
+                        let e = match measure {
+                            Measure::Energy => r.energy_error,
+                            Measure::Trajectory => r.trajectory_error,
+                            Measure::Attitude => r.attitude_error,
                         }?;
                         Some((r.wall_seconds, e))
                     })
@@ -1674,25 +1900,31 @@ fn dynamics_figure(rows: &[DynamicsRow], scene: &str, baseline: Option<(f64, f64
                 })
             })
             .collect();
-        if let Some((s, e, t)) = baseline {
+        if let (Some((s, e, t)), Measure::Energy | Measure::Trajectory) = (baseline, measure) {
             series.push(Series {
                 label: "paper's method (RK4, dt = 0.1)".into(),
-                points: vec![(s, if energy { e } else { t })],
+                points: vec![(s, if measure == Measure::Energy { e } else { t })],
                 style: Style::Points,
             });
         }
+        let end = if si {
+            format!("{t_end:.0} s")
+        } else {
+            format!("{t_end}")
+        };
         panels.push(Panel::Log {
             lines: LinePanel {
-                title: if energy {
-                    "energy error".into()
-                } else {
-                    "trajectory error at t = 300".into()
+                title: match measure {
+                    Measure::Energy => "energy error".into(),
+                    Measure::Trajectory => format!("trajectory error at t = {end}"),
+                    Measure::Attitude => format!("attitude error at t = {end}"),
                 },
                 x_label: "wall time (s)".into(),
-                y_label: if energy {
-                    "max |E − E0| / |E0|".into()
-                } else {
-                    "|r − r_ref| (length units)".into()
+                y_label: match measure {
+                    Measure::Energy => "max |E − E0| / |E0|".into(),
+                    Measure::Trajectory if si => "|r − r_ref| (m)".into(),
+                    Measure::Trajectory => "|r − r_ref| (length units)".into(),
+                    Measure::Attitude => "rotation angle from reference (rad)".into(),
                 },
                 series,
                 circles: vec![],
@@ -1702,8 +1934,13 @@ fn dynamics_figure(rows: &[DynamicsRow], scene: &str, baseline: Option<(f64, f64
             log_y: true,
         });
     }
+    let span = if si {
+        format!("t = 0 … {t_end:.0} s")
+    } else {
+        format!("t = 0 … {t_end}")
+    };
     Figure {
-        title: format!("{scene}: error against wall time, t = 0 … 300"),
+        title: format!("{scene}: error against wall time, {span}"),
         panels,
         columns: 1,
     }

@@ -118,7 +118,7 @@ fn draw_marker<DB: DrawingBackend, CT: CoordTranslate>(
     at: CT::From,
     shape: usize,
     colour: RGBColor,
-) -> Result<(), String>
+) -> Result<(), DrawError>
 where
     CT::From: Clone,
 {
@@ -330,9 +330,9 @@ pub fn write_figure(figure: &Figure, stem: &Path) -> Result<Vec<PathBuf>, PlotEr
     let mut text = String::new();
     {
         let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
-        draw_figure(&root, &prepared, Target::Svg, 1.0).map_err(|message| PlotError::Backend {
+        draw_figure(&root, &prepared, Target::Svg, 1.0).map_err(|e| PlotError::Backend {
             path: svg.clone(),
-            message,
+            message: e.to_string(),
         })?;
         root.present().map_err(|e| PlotError::Backend {
             path: svg.clone(),
@@ -352,7 +352,8 @@ pub fn write_figure(figure: &Figure, stem: &Path) -> Result<Vec<PathBuf>, PlotEr
     let mut big = vec![0u8; 3 * big_size.0 as usize * big_size.1 as usize];
     {
         let root = BitMapBackend::with_buffer(&mut big, big_size).into_drawing_area();
-        draw_figure(&root, &prepared, Target::Png, SUPERSAMPLE as f64).map_err(backend_error)?;
+        draw_figure(&root, &prepared, Target::Png, SUPERSAMPLE as f64)
+            .map_err(|e| backend_error(e.to_string()))?;
         root.present().map_err(|e| backend_error(e.to_string()))?;
     }
     let small = downsample(&big, size, SUPERSAMPLE);
@@ -398,13 +399,13 @@ fn with_extension(stem: &Path, ext: &str) -> PathBuf {
 }
 
 /// Registers DejaVu Sans as plotters' "sans-serif" once per process.
-fn register_fonts() -> Result<(), String> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+fn register_fonts() -> Result<(), DrawError> {
+    static DONE: OnceLock<Result<(), DrawError>> = OnceLock::new();
     DONE.get_or_init(|| {
         plotters::style::register_font(FONT, FontStyle::Normal, dejavu::sans::regular())
-            .map_err(|_| "the embedded DejaVu Sans font could not be read".to_string())?;
+            .map_err(|_| DrawError::Font("DejaVu Sans"))?;
         plotters::style::register_font(FONT, FontStyle::Bold, dejavu::sans::bold())
-            .map_err(|_| "the embedded DejaVu Sans Bold font could not be read".to_string())?;
+            .map_err(|_| DrawError::Font("DejaVu Sans Bold"))?;
         Ok(())
     })
     .clone()
@@ -954,8 +955,20 @@ fn trim_zeros(s: &str) -> String {
 
 type Area<'a, DB> = DrawingArea<DB, Shift>;
 
-fn err<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
+/// Why drawing failed (inside [`write_figure`], which reports it with the file's path as
+/// [`PlotError::Backend`]).
+#[derive(Debug, Clone, thiserror::Error)]
+enum DrawError {
+    /// An embedded font could not be registered.
+    #[error("the embedded {0} font could not be read")]
+    Font(&'static str),
+    /// The backend's message (its error type depends on the backend, so it is kept as text).
+    #[error("{0}")]
+    Backend(String),
+}
+
+fn err<E: std::fmt::Display>(e: E) -> DrawError {
+    DrawError::Backend(e.to_string())
 }
 
 /// What is being drawn: polylines are drawn whole in SVG (the viewer joins the segments) and
@@ -987,7 +1000,7 @@ fn draw_figure<DB: DrawingBackend>(
     fig: &Prepared,
     target: Target,
     scale: f64,
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     register_fonts()?;
     let _scale = ScaleGuard::set(scale);
     root.fill(&WHITE).map_err(err)?;
@@ -1102,7 +1115,7 @@ fn draw_legend<DB: DrawingBackend>(
     area: &Area<'_, DB>,
     entries: &[LegendEntry],
     top: i32,
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     let (w, _) = area.dim_in_pixel();
     let line_h = px(LEGEND_SIZE * 1.6) as i32;
     let x0 = pxi(12);
@@ -1176,7 +1189,7 @@ fn dash_pattern(kind: LegendKind) -> (i32, i32) {
 fn titled<'a, DB: DrawingBackend>(
     area: &Area<'a, DB>,
     title: &str,
-) -> Result<Area<'a, DB>, String> {
+) -> Result<Area<'a, DB>, DrawError> {
     let band = px(PANEL_TITLE_SIZE * 1.7) as u32;
     let (top, rest) = area.split_vertically(band);
     let (w, h) = top.dim_in_pixel();
@@ -1194,7 +1207,7 @@ fn draw_lines<DB: DrawingBackend>(
     cell: &Area<'_, DB>,
     p: &PreparedLines,
     target: Target,
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     let body = titled(cell, &p.title)?;
     let entries = legend_entries(p);
     let (plot_area, legend_area) = split_legend(&body, &entries);
@@ -1283,7 +1296,7 @@ fn draw_lines<DB: DrawingBackend>(
         };
         let pts = thinned.iter().copied();
         let plotting = chart.plotting_area().clone();
-        let dots = |pts: &mut dyn Iterator<Item = (f64, f64)>| -> Result<(), String> {
+        let dots = |pts: &mut dyn Iterator<Item = (f64, f64)>| -> Result<(), DrawError> {
             for c in pts {
                 draw_marker(&plotting, c, shape, colour)?;
             }
@@ -1456,7 +1469,7 @@ fn configure_mesh<DB: DrawingBackend>(
     chart: &mut ChartContext<'_, DB, Cartesian2d<KeyCoord, KeyCoord>>,
     x_axis: &Axis,
     y_axis: &Axis,
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     let fx = |v: &f64| x_axis.label_for(*v);
     let fy = |v: &f64| y_axis.label_for(*v);
     chart
@@ -1478,7 +1491,7 @@ fn configure_mesh<DB: DrawingBackend>(
 fn draw_histogram<DB: DrawingBackend>(
     cell: &Area<'_, DB>,
     p: &PreparedHistogram,
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     let body = titled(cell, &p.title)?;
     let (aw, ah) = body.dim_in_pixel();
     let max_count = p.counts.iter().copied().max().unwrap_or(0).max(1) as f64;

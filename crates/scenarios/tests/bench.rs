@@ -2,7 +2,9 @@
 //! finite and positive (errors are floored at `ERROR_FLOOR`, so zero is never reported).
 
 use std::path::Path;
-use surfgrav_scenarios::bench::{run_bench, summary, BenchOptions, ERROR_FLOOR, SEPARATIONS};
+use surfgrav_scenarios::bench::{
+    run_bench, summary, BenchOptions, ERROR_FLOOR, KW4_SCENE, SEPARATIONS,
+};
 
 #[test]
 fn quick_bench_writes_every_file_with_finite_positive_errors() {
@@ -48,6 +50,8 @@ fn check_bench(options: BenchOptions, out: &Path) {
         "paper_2s.svg",
         "paper_2d.png",
         "paper_2d.svg",
+        "kw4_ellipsoids.png",
+        "kw4_ellipsoids.svg",
         "speedup.md",
         "speedup.csv",
     ];
@@ -94,8 +98,8 @@ fn check_bench(options: BenchOptions, out: &Path) {
         assert!(r.force_error <= 1e-9 && r.energy_error <= 1e-9, "{r:?}");
     }
 
-    // (b), (c): both scenes, every integrator, every completed run has both errors.
-    for scene in ["paper-2s", "paper-2d"] {
+    // (b), (c), (d): every scene, every integrator, every completed run has its errors.
+    for scene in ["paper-2s", "paper-2d", KW4_SCENE] {
         let rows: Vec<_> = report
             .dynamics
             .iter()
@@ -112,7 +116,10 @@ fn check_bench(options: BenchOptions, out: &Path) {
     }
     let mut errors = 0;
     for r in &report.dynamics {
-        for e in [r.energy_error, r.trajectory_error].into_iter().flatten() {
+        for e in [r.energy_error, r.trajectory_error, r.attitude_error]
+            .into_iter()
+            .flatten()
+        {
             assert!(e.is_finite() && e >= ERROR_FLOOR, "{r:?}");
             errors += 1;
         }
@@ -123,9 +130,50 @@ fn check_bench(options: BenchOptions, out: &Path) {
                 "{r:?}"
             );
         }
+        // Attitudes are compared on the rotating scene only, on every run that completed.
+        let kw4_completed = r.scene == KW4_SCENE && r.termination == "completed";
+        assert_eq!(r.attitude_error.is_some(), kw4_completed, "{r:?}");
+        if kw4_completed {
+            assert!(
+                r.energy_error.is_some() && r.trajectory_error.is_some(),
+                "{r:?}"
+            );
+        }
     }
-    // Two scenes, seven integrators, at least two settings each, two errors per run.
-    assert!(errors >= 2 * 7 * 2 * 2, "only {errors} dynamics errors");
+    // (d) KW4 rotates: DOP853 at its tightest swept tolerance follows the reference. A local
+    // relative tolerance ε of lengths near a = 2548 m, accumulated over at most 10^4 steps,
+    // bounds the final position error by 10^4 · ε · a and the attitude error by 10^4 · ε rad
+    // (measured in quick mode at ε = 1e-11: 2.2e-9 m and 5.9e-11 rad). Frozen or mis-integrated
+    // attitudes miss the second bound by orders of magnitude.
+    let tolerance = |r: &surfgrav_scenarios::bench::DynamicsRow| -> f64 {
+        r.setting
+            .strip_prefix("tol ")
+            .and_then(|t| t.parse().ok())
+            .unwrap_or_else(|| panic!("{r:?}: no tolerance"))
+    };
+    let tightest = report
+        .dynamics
+        .iter()
+        .filter(|r| r.scene == KW4_SCENE && r.integrator == "dop853")
+        .min_by(|a, b| tolerance(a).total_cmp(&tolerance(b)))
+        .expect("a kw4 dop853 run");
+    let epsilon = tolerance(tightest);
+    assert!(tightest.steps <= 10_000, "{tightest:?}");
+    assert!(
+        tightest.trajectory_error.unwrap() <= 1e4 * epsilon * 2548.0,
+        "{tightest:?}"
+    );
+    assert!(
+        tightest.attitude_error.unwrap() <= 1e4 * epsilon,
+        "{tightest:?}"
+    );
+
+    // Two planar scenes, seven integrators, at least two settings each, two errors per run;
+    // KW4: three errors per run.
+    assert!(
+        errors >= 2 * 7 * 2 * 2 + 7 * 2 * 3,
+        "only {errors} dynamics errors"
+    );
 
     // Speed-ups against the committed baseline, and the report says where it came from.
     assert!(
