@@ -104,6 +104,52 @@ pub fn points(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[f64; 3]>> {
     Ok(points)
 }
 
+/// An (M, 3) array of any integer dtype as M triples of 0-based indices (vertex indices of
+/// triangles), copied so the GIL can be released.
+pub fn index_triples(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[usize; 3]>> {
+    let array = obj.cast::<PyUntypedArray>().map_err(|_| {
+        InputError::new_err(format!(
+            "{what} must be a numpy array of shape (M, 3) and an integer dtype, got a {} \
+             object; convert it with numpy.asarray({what}, dtype=numpy.int64)",
+            type_name(obj)
+        ))
+    })?;
+    let dtype = array.dtype();
+    if !matches!(dtype.kind(), b'i' | b'u') {
+        return Err(InputError::new_err(format!(
+            "{what} must have an integer dtype (0-based vertex indices), got {dtype}; convert \
+             it with numpy.asarray({what}, dtype=numpy.int64)"
+        )));
+    }
+    let shape = array.shape();
+    if !(shape.len() == 2 && shape[1] == 3) {
+        return Err(InputError::new_err(format!(
+            "{what} must have shape (M, 3), got shape {}",
+            shape_text(shape)
+        )));
+    }
+    // Every integer dtype as int64 (an unsigned index beyond i64's range turns negative and is
+    // refused below).
+    let wide = obj.call_method1("astype", ("int64",))?;
+    let typed = wide.cast::<PyArray2<i64>>()?;
+    let readonly = typed.readonly();
+    let view = readonly.as_array();
+    let mut out = Vec::with_capacity(view.nrows());
+    for (i, row) in view.outer_iter().enumerate() {
+        let mut triple = [0usize; 3];
+        for (k, &x) in row.iter().enumerate() {
+            triple[k] = usize::try_from(x).map_err(|_| {
+                InputError::new_err(format!(
+                    "{what}[{i}] = ({}, {}, {}) has a negative index; indices are 0-based",
+                    row[0], row[1], row[2]
+                ))
+            })?;
+        }
+        out.push(triple);
+    }
+    Ok(out)
+}
+
 /// A short list of numbers: a 1-D float64 array, or a tuple or list of numbers.
 fn numbers(obj: &Bound<'_, PyAny>, what: &str, expect: &str) -> PyResult<Vec<f64>> {
     if obj.cast::<PyUntypedArray>().is_ok() {

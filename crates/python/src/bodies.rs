@@ -10,20 +10,44 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use rayon::prelude::*;
-use surfgrav_potentials::{Potential, Vec3};
+use std::path::PathBuf;
+
+use surfgrav_potentials::{LengthUnit, Mesh, Polyhedron as PolyhedronBody, Potential, Vec3};
 use surfgrav_scenarios::spec::{compact, Amount, BodyKind, BodySpec};
 use surfgrav_surfaces::interaction::Body as EngineBody;
 
 use crate::arrays;
-use crate::errors::{compute, input, InputError};
+use crate::errors::{compute, input, Failure, InputError};
 
-/// What a Python body holds: the validated closed-form body, its spec (for messages and the
-/// CLI) and the engine's body with its cache of surface node tables (shared by every
-/// interaction this body takes part in).
+/// What a Python body is, for messages, `repr` and the command line.
+#[derive(Debug, Clone)]
+pub enum Described {
+    /// A closed-form body, as the CLI's `--body` spec.
+    Spec(BodySpec),
+    /// A homogeneous polyhedron.
+    Mesh(MeshInfo),
+}
+
+/// Where a polyhedron came from and what it was given.
+#[derive(Debug, Clone)]
+pub struct MeshInfo {
+    /// `arrays`, the OBJ file or the vertex and facet files, as given.
+    pub source: String,
+    /// Mass or density, as given.
+    pub amount: Amount,
+    /// The length unit of the input coordinates.
+    pub unit: LengthUnit,
+    /// The input mesh's centroid (in metres), subtracted from every vertex.
+    pub centroid: Vec3,
+}
+
+/// What a Python body holds: the validated body's description (for messages and the CLI) and
+/// the engine's body with its cache of surface node tables (shared by every interaction this
+/// body takes part in).
 #[derive(Debug)]
 pub struct Core {
-    /// The spec as the CLI would take it.
-    pub spec: BodySpec,
+    /// What the body is.
+    pub described: Described,
     /// The gravitational constant.
     pub g: f64,
     /// The engine's body.
@@ -42,7 +66,47 @@ impl Core {
             .map_err(|e| InputError::new_err(e.to_string()))?
             .into_interaction_body()
             .map_err(|e| InputError::new_err(e.to_string()))?;
-        Ok(Self { spec, g, engine })
+        Ok(Self {
+            described: Described::Spec(spec),
+            g,
+            engine,
+        })
+    }
+
+    /// The closed-form body's spec (None for a polyhedron).
+    pub fn spec(&self) -> Option<&BodySpec> {
+        match &self.described {
+            Described::Spec(s) => Some(s),
+            Described::Mesh(_) => None,
+        }
+    }
+
+    /// Whether this is a point mass.
+    pub fn is_point(&self) -> bool {
+        self.spec().is_some_and(|s| s.kind == BodyKind::Point)
+    }
+
+    /// One line naming the body: the CLI spec, or the polyhedron's mesh and amount.
+    pub fn describe(&self) -> String {
+        match &self.described {
+            Described::Spec(s) => s.to_string(),
+            Described::Mesh(m) => {
+                let p = self.engine.as_polyhedron();
+                let faces = p.map_or(0, |p| p.faces().len());
+                let amount = match m.amount {
+                    Amount::Mass(x) => format!("mass={x}"),
+                    Amount::Density(x) => format!("density={x}"),
+                };
+                format!("polyhedron:{},faces={faces},{amount}", m.source)
+            }
+        }
+    }
+
+    /// Geometric value `i` of a closed-form body's spec (its subclass's getters).
+    fn dimension(&self, i: usize) -> f64 {
+        self.spec()
+            .and_then(|s| s.dimensions.get(i).copied())
+            .unwrap_or(f64::NAN)
     }
 
     /// The body's potential, for field evaluation.
@@ -122,7 +186,7 @@ fn not_finite_message(core: &Core, i: usize, r: &[f64; 3], potential: f64) -> St
     );
     if core.potential().bounding_radius() == 0.0 {
         format!("{at} is the position of the point mass, where its potential is infinite")
-    } else if core.spec.kind == BodyKind::Disk && potential.is_finite() {
+    } else if core.spec().is_some_and(|s| s.kind == BodyKind::Disk) && potential.is_finite() {
         format!(
             "{at} lies on the disk's rim, where the in-plane attraction is infinite (it grows \
              like 2Gσ·ln(8R/d) at a distance d from the rim); the potential there is finite, \
@@ -195,12 +259,11 @@ impl Body {
         self.core.engine.bounding_radius()
     }
 
-    /// The body kind: "point", "sphere", "spheroid", "ellipsoid" or "disk".
+    /// The body kind: "point", "sphere", "spheroid", "ellipsoid", "disk" or "polyhedron".
     #[getter]
     fn kind(&self) -> String {
         self.core
-            .spec
-            .to_string()
+            .describe()
             .split(':')
             .next()
             .unwrap_or_default()
@@ -208,10 +271,11 @@ impl Body {
     }
 
     /// The body as the command line's `--body`/`--a`/`--b` spec
-    /// (e.g. `spheroid:equatorial=1,polar=0.25,mass=1`); G is given separately (`--g`).
+    /// (e.g. `spheroid:equatorial=1,polar=0.25,mass=1`); G is given separately (`--g`). None
+    /// for a polyhedron (the command line reads meshes from files).
     #[getter]
-    fn spec(&self) -> String {
-        self.core.spec.to_string()
+    fn spec(&self) -> Option<String> {
+        self.core.spec().map(ToString::to_string)
     }
 
     /// The inertia tensor about the centroid in the body frame, a (3, 3) array; None for a
@@ -230,28 +294,44 @@ impl Body {
     fn __repr__(&self) -> String {
         let g = self.core.g;
         let mut args: Vec<String> = Vec::new();
-        let d = &self.core.spec.dimensions;
-        let name = match self.core.spec.kind {
-            BodyKind::Point => "PointMass",
-            BodyKind::Sphere => {
-                args.push(format!("radius={}", d[0]));
-                "Sphere"
+        let (name, amount) = match &self.core.described {
+            Described::Spec(spec) => {
+                let d = &spec.dimensions;
+                let name = match spec.kind {
+                    BodyKind::Point => "PointMass",
+                    BodyKind::Sphere => {
+                        args.push(format!("radius={}", d[0]));
+                        "Sphere"
+                    }
+                    BodyKind::Spheroid => {
+                        args.push(format!("equatorial_radius={}", d[0]));
+                        args.push(format!("polar_radius={}", d[1]));
+                        "Spheroid"
+                    }
+                    BodyKind::Ellipsoid => {
+                        args.push(format!("semi_axes=({}, {}, {})", d[0], d[1], d[2]));
+                        "Ellipsoid"
+                    }
+                    BodyKind::Disk => {
+                        args.push(format!("radius={}", d[0]));
+                        "Disk"
+                    }
+                };
+                (name, spec.amount)
             }
-            BodyKind::Spheroid => {
-                args.push(format!("equatorial_radius={}", d[0]));
-                args.push(format!("polar_radius={}", d[1]));
-                "Spheroid"
-            }
-            BodyKind::Ellipsoid => {
-                args.push(format!("semi_axes=({}, {}, {})", d[0], d[1], d[2]));
-                "Ellipsoid"
-            }
-            BodyKind::Disk => {
-                args.push(format!("radius={}", d[0]));
-                "Disk"
+            Described::Mesh(m) => {
+                let (v, f) = self
+                    .core
+                    .engine
+                    .as_polyhedron()
+                    .map_or((0, 0), |p| (p.vertices().len(), p.faces().len()));
+                args.push(format!("source={:?}", m.source));
+                args.push(format!("vertices={v}"));
+                args.push(format!("faces={f}"));
+                ("Polyhedron", m.amount)
             }
         };
-        match self.core.spec.amount {
+        match amount {
             Amount::Mass(m) => args.push(format!("mass={m}")),
             Amount::Density(r) => args.push(format!("density={r}")),
         }
@@ -304,7 +384,7 @@ impl Sphere {
     /// Radius.
     #[getter]
     fn radius(slf: &Bound<'_, Self>) -> f64 {
-        slf.as_super().get().core.spec.dimensions[0]
+        slf.as_super().get().core.dimension(0)
     }
 }
 
@@ -340,13 +420,13 @@ impl Spheroid {
     /// Equatorial radius (the x and y semi-axes).
     #[getter]
     fn equatorial_radius(slf: &Bound<'_, Self>) -> f64 {
-        slf.as_super().get().core.spec.dimensions[0]
+        slf.as_super().get().core.dimension(0)
     }
 
     /// Polar radius (the z semi-axis).
     #[getter]
     fn polar_radius(slf: &Bound<'_, Self>) -> f64 {
-        slf.as_super().get().core.spec.dimensions[1]
+        slf.as_super().get().core.dimension(1)
     }
 }
 
@@ -402,7 +482,8 @@ impl Ellipsoid {
     /// The semi-axes (a, b, c) along the body x, y, z axes.
     #[getter]
     fn semi_axes<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
-        let d = slf.as_super().get().core.spec.dimensions.clone();
+        let core = &slf.as_super().get().core;
+        let d = [core.dimension(0), core.dimension(1), core.dimension(2)];
         PyTuple::new(slf.py(), d)
     }
 }
@@ -426,6 +507,219 @@ impl Disk {
     /// Radius.
     #[getter]
     fn radius(slf: &Bound<'_, Self>) -> f64 {
-        slf.as_super().get().core.spec.dimensions[0]
+        slf.as_super().get().core.dimension(0)
+    }
+}
+
+/// The length unit of mesh coordinates, with the CLI's message.
+fn mesh_unit(units: &str) -> PyResult<LengthUnit> {
+    units
+        .parse::<LengthUnit>()
+        .map_err(|e| InputError::new_err(e.to_string()))
+}
+
+/// Validates `mesh` (already in metres) and builds the polyhedron's core.
+fn polyhedron_core(
+    mesh: &Mesh,
+    source: String,
+    unit: LengthUnit,
+    amount: Amount,
+    g: f64,
+) -> Result<Core, Failure> {
+    let body = match amount {
+        Amount::Mass(m) => PolyhedronBody::with_mass(mesh, m),
+        Amount::Density(d) => PolyhedronBody::with_density(mesh, d),
+    }
+    .map_err(|e| input(e.to_string()))?
+    .with_gravitational_constant(g)
+    .map_err(|e| input(e.to_string()))?;
+    let centroid = body.centroid();
+    let engine = EngineBody::polyhedron(body).map_err(|e| input(e.to_string()))?;
+    Ok(Core {
+        described: Described::Mesh(MeshInfo {
+            source,
+            amount,
+            unit,
+            centroid,
+        }),
+        g,
+        engine,
+    })
+}
+
+/// A homogeneous polyhedron: a closed triangle mesh of uniform density, by the closed form of
+/// Werner & Scheeres (1997) (and, far away, its certified exterior expansion).
+///
+/// `Polyhedron(vertices, faces, mass=None, *, density=None, units="m", G=1.0)`: `vertices` an
+/// (N, 3) float64 array, `faces` an (M, 3) integer array of 0-based vertex indices,
+/// counter-clockwise seen from outside. Or read a file: `Polyhedron.from_obj(path, ...)`
+/// (Wavefront OBJ, triangles) or `Polyhedron.from_csv(vertex_file, facet_file, ...)` (the
+/// Didymos radar model's pair: `filler,x,y,z` and 1-based `i,j,k,,`). Coordinates are in
+/// `units` ("m" or "km") and converted to metres. The mesh is validated (closed, consistently
+/// outward-oriented, no degenerate face, no self-intersection): a bad one raises `InputError`
+/// naming the face, edge or vertex.
+///
+/// The body frame has its origin at the mesh's centroid (`centroid`, in the input mesh's frame,
+/// metres, is subtracted from every vertex); its axes are the mesh's.
+#[pyclass(module = "surfgrav", extends = Body, frozen)]
+pub struct Polyhedron;
+
+impl Polyhedron {
+    fn core_of<'py>(slf: &'py Bound<'py, Self>) -> &'py Core {
+        &slf.as_super().get().core
+    }
+
+    fn info<'py>(slf: &'py Bound<'py, Self>) -> Option<&'py MeshInfo> {
+        match &Self::core_of(slf).described {
+            Described::Mesh(m) => Some(m),
+            Described::Spec(_) => None,
+        }
+    }
+
+    /// A mesh read by `read` (with the GIL released) into a new Python `Polyhedron`.
+    fn from_file(
+        py: Python<'_>,
+        source: String,
+        read: impl FnOnce(LengthUnit) -> Result<Mesh, Failure> + Send,
+        mass: Option<f64>,
+        density: Option<f64>,
+        units: &str,
+        g: f64,
+    ) -> PyResult<Py<Polyhedron>> {
+        let amount = amount("polyhedron", mass, density)?;
+        let unit = mesh_unit(units)?;
+        let core = compute(py, move || {
+            let mesh = read(unit)?;
+            polyhedron_core(&mesh, source, unit, amount, g)
+        })?;
+        Py::new(py, Body::init(core).add_subclass(Polyhedron))
+    }
+}
+
+#[pymethods]
+impl Polyhedron {
+    #[new]
+    #[pyo3(signature = (vertices, faces, mass = None, *, density = None, units = "m", G = 1.0))]
+    #[allow(non_snake_case)]
+    fn new(
+        py: Python<'_>,
+        vertices: &Bound<'_, PyAny>,
+        faces: &Bound<'_, PyAny>,
+        mass: Option<f64>,
+        density: Option<f64>,
+        units: &str,
+        G: f64,
+    ) -> PyResult<PyClassInitializer<Self>> {
+        let amount = amount("polyhedron", mass, density)?;
+        let unit = mesh_unit(units)?;
+        let points = arrays::points(vertices, "vertices")?;
+        let faces = arrays::index_triples(faces, "faces")?;
+        let core = compute(py, move || {
+            let scale = unit.metres();
+            let mesh = Mesh {
+                vertices: points
+                    .iter()
+                    .map(|p| Vec3::new(p[0], p[1], p[2]) * scale)
+                    .collect(),
+                faces,
+            };
+            polyhedron_core(&mesh, "arrays".into(), unit, amount, G)
+        })?;
+        Ok(Body::init(core).add_subclass(Polyhedron))
+    }
+
+    /// Reads a Wavefront OBJ file (`v` and `f` lines, every face a triangle).
+    ///
+    /// `Polyhedron.from_obj(path, mass=None, *, density=None, units="m", G=1.0)`.
+    #[staticmethod]
+    #[pyo3(signature = (path, mass = None, *, density = None, units = "m", G = 1.0))]
+    #[allow(non_snake_case)]
+    fn from_obj(
+        py: Python<'_>,
+        path: PathBuf,
+        mass: Option<f64>,
+        density: Option<f64>,
+        units: &str,
+        G: f64,
+    ) -> PyResult<Py<Polyhedron>> {
+        let source = path.display().to_string();
+        let read = move |unit| Mesh::read_obj(&path, unit).map_err(|e| input(e.to_string()));
+        Self::from_file(py, source, read, mass, density, units, G)
+    }
+
+    /// Reads a vertex/facet CSV pair (the Didymos radar model's format: vertex lines
+    /// `filler,x,y,z`, facet lines `i,j,k,,` with 1-based indices).
+    ///
+    /// `Polyhedron.from_csv(vertex_file, facet_file, mass=None, *, density=None, units="m",
+    /// G=1.0)`.
+    #[staticmethod]
+    #[pyo3(signature = (vertex_file, facet_file, mass = None, *, density = None, units = "m", G = 1.0))]
+    #[allow(non_snake_case)]
+    fn from_csv(
+        py: Python<'_>,
+        vertex_file: PathBuf,
+        facet_file: PathBuf,
+        mass: Option<f64>,
+        density: Option<f64>,
+        units: &str,
+        G: f64,
+    ) -> PyResult<Py<Polyhedron>> {
+        let source = format!("{} + {}", vertex_file.display(), facet_file.display());
+        let read = move |unit| {
+            Mesh::read_vertex_facet_csv(&vertex_file, &facet_file, unit)
+                .map_err(|e| input(e.to_string()))
+        };
+        Self::from_file(py, source, read, mass, density, units, G)
+    }
+
+    /// Vertices in the body frame (centroid at the origin), metres, an (N, 3) array.
+    #[getter]
+    fn vertices<'py>(slf: &Bound<'py, Self>) -> Bound<'py, PyArray2<f64>> {
+        let flat: Vec<f64> = Self::core_of(slf)
+            .engine
+            .as_polyhedron()
+            .map(|p| p.vertices().iter().flat_map(|v| [v.x, v.y, v.z]).collect())
+            .unwrap_or_default();
+        arrays::matrix(slf.py(), flat, 3)
+    }
+
+    /// Faces as 0-based vertex indices, counter-clockwise seen from outside, an (M, 3) int64
+    /// array.
+    #[getter]
+    fn faces<'py>(slf: &Bound<'py, Self>) -> Bound<'py, PyArray2<i64>> {
+        let flat: Vec<i64> = Self::core_of(slf)
+            .engine
+            .as_polyhedron()
+            .map(|p| p.faces().iter().flat_map(|f| f.map(i64::from)).collect())
+            .unwrap_or_default();
+        let n = flat.len() / 3;
+        numpy::ndarray::Array2::from_shape_vec((n, 3), flat)
+            .map(|a| numpy::IntoPyArray::into_pyarray(a, slf.py()))
+            .unwrap_or_else(|_| PyArray2::zeros(slf.py(), (0, 3), false))
+    }
+
+    /// The input mesh's centroid in its own frame (metres), a (3,) array: subtracted from every
+    /// vertex to make the body frame.
+    #[getter]
+    fn centroid<'py>(slf: &Bound<'py, Self>) -> Bound<'py, PyArray1<f64>> {
+        let c = Self::info(slf).map_or(Vec3::zeros(), |m| m.centroid);
+        arrays::vec3_array(slf.py(), &c)
+    }
+
+    /// The input coordinates' unit: "m" or "km".
+    #[getter]
+    fn units(slf: &Bound<'_, Self>) -> &'static str {
+        match Self::info(slf).map(|m| m.unit) {
+            Some(LengthUnit::Kilometres) => "km",
+            _ => "m",
+        }
+    }
+
+    /// Where the mesh came from: "arrays", the OBJ file, or "VERTICES + FACETS".
+    #[getter]
+    fn source(slf: &Bound<'_, Self>) -> String {
+        Self::info(slf)
+            .map(|m| m.source.clone())
+            .unwrap_or_default()
     }
 }

@@ -1,7 +1,7 @@
 //! Python bindings of surfgrav: the extension module `surfgrav._surfgrav`, re-exported by the
 //! `surfgrav` package (`python/surfgrav/__init__.py`; stubs in `__init__.pyi`).
 //!
-//! - bodies ([`bodies`]): `Sphere`, `Spheroid`, `Ellipsoid`, `Disk`, `PointMass`, with
+//! - bodies ([`bodies`]): `Sphere`, `Spheroid`, `Ellipsoid`, `Disk`, `PointMass`, `Polyhedron`, with
 //!   `field(points)` over an (N, 3) array, in parallel;
 //! - interactions ([`interaction`]): `interact` and `interact_batch`;
 //! - simulations ([`simulation`]): `Simulation` (two bodies, an integrator by name,
@@ -37,6 +37,7 @@ fn _surfgrav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<bodies::Spheroid>()?;
     m.add_class::<bodies::Ellipsoid>()?;
     m.add_class::<bodies::Disk>()?;
+    m.add_class::<bodies::Polyhedron>()?;
     m.add_class::<interaction::Interaction>()?;
     m.add_class::<interaction::BatchInteraction>()?;
     m.add_class::<simulation::Simulation>()?;

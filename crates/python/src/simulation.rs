@@ -18,7 +18,6 @@ use surfgrav_dynamics::{
     InteractionModel, PointMasses, SceneModel, SceneSettings, Termination, TwoBodyState,
 };
 use surfgrav_potentials::Vec3;
-use surfgrav_scenarios::spec::BodyKind;
 use surfgrav_surfaces::interaction::InteractionError as EngineError;
 
 use crate::arrays;
@@ -119,7 +118,7 @@ fn build_model(
     interaction_tolerance: f64,
     tabulate: bool,
 ) -> Result<(Box<dyn InteractionModel>, &'static str), Failure> {
-    if a.spec.kind == BodyKind::Point && b.spec.kind == BodyKind::Point {
+    if a.is_point() && b.is_point() {
         if a.g != b.g {
             return Err(input(
                 EngineError::GravitationalConstantMismatch { a: a.g, b: b.g }.to_string(),
@@ -534,11 +533,7 @@ impl Simulation {
     }
 
     fn __repr__(&self) -> String {
-        let bodies: Vec<String> = self
-            .members
-            .iter()
-            .map(|m| m.core.spec.to_string())
-            .collect();
+        let bodies: Vec<String> = self.members.iter().map(|m| m.core.describe()).collect();
         format!(
             "Simulation(t={}, integrator='{}', step={}, tolerance={}, bodies=[{}])",
             self.t,

@@ -1,7 +1,7 @@
 """Exact gravitational interactions of extended rigid bodies, and their two-body motion.
 
-Bodies (``Sphere``, ``Spheroid``, ``Ellipsoid``, ``Disk``, ``PointMass``) evaluate their field
-over an (N, 3) array of points; ``interact`` and ``interact_batch`` give the force, torques and
+Bodies (``Sphere``, ``Spheroid``, ``Ellipsoid``, ``Disk``, ``PointMass``, ``Polyhedron``)
+evaluate their field over an (N, 3) array of points; ``interact`` and ``interact_batch`` give the force, torques and
 mutual energy of two bodies; ``Simulation`` integrates their motion; ``Scene`` runs a scene file
 or preset exactly as the ``surfgrav`` command line does; ``sweep`` runs a sweep file's tasks
 through any ``concurrent.futures.Executor`` (a Dask ``Client.get_executor()`` for a cluster).
@@ -28,6 +28,7 @@ from ._surfgrav import (
     Interaction,
     InternalError,
     PointMass,
+    Polyhedron,
     RunError,
     Scene,
     SceneRun,
@@ -49,6 +50,7 @@ __all__ = [
     "Interaction",
     "InternalError",
     "PointMass",
+    "Polyhedron",
     "RunError",
     "Scene",
     "SceneRun",

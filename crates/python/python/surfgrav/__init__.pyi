@@ -25,7 +25,7 @@ class InternalError(RuntimeError):
     """A bug in surfgrav (a Rust panic, caught)."""
 
 class Body:
-    """A homogeneous body (build a Sphere, Spheroid, Ellipsoid, Disk or PointMass)."""
+    """A homogeneous body (build a Sphere, Spheroid, Ellipsoid, Disk, PointMass or Polyhedron)."""
 
     @property
     def mass(self) -> float: ...
@@ -40,7 +40,8 @@ class Body:
     @property
     def kind(self) -> str: ...
     @property
-    def spec(self) -> str: ...
+    def spec(self) -> Optional[str]:
+        """The command line's body spec; None for a Polyhedron."""
     def field(self, points: FloatArray) -> Tuple[FloatArray, FloatArray]:
         """Φ (N,) and a = −∇Φ (N, 3) at an (N, 3) float64 array of body-frame points."""
     def inertia(self) -> Optional[FloatArray]:
@@ -95,6 +96,64 @@ class Disk(Body):
     def __init__(self, radius: float, mass: float, *, G: float = 1.0) -> None: ...
     @property
     def radius(self) -> float: ...
+
+PathLike = Union[str, "os.PathLike[str]"]
+IntArray = npt.NDArray[np.integer[Any]]
+
+class Polyhedron(Body):
+    """A homogeneous polyhedron (closed triangle mesh; Werner & Scheeres 1997). Coordinates in
+    `units` ("m" or "km") are converted to metres; the mesh is validated (a bad one raises
+    InputError naming the face, edge or vertex). The body frame has its origin at the mesh's
+    centroid (`centroid`, subtracted from every vertex) and the mesh's axes."""
+
+    def __init__(
+        self,
+        vertices: FloatArray,
+        faces: IntArray,
+        mass: Optional[float] = None,
+        *,
+        density: Optional[float] = None,
+        units: str = "m",
+        G: float = 1.0,
+    ) -> None:
+        """`vertices` (N, 3) float64; `faces` (M, 3) integer, 0-based vertex indices,
+        counter-clockwise seen from outside. Give mass or density."""
+    @staticmethod
+    def from_obj(
+        path: PathLike,
+        mass: Optional[float] = None,
+        *,
+        density: Optional[float] = None,
+        units: str = "m",
+        G: float = 1.0,
+    ) -> "Polyhedron":
+        """Reads a Wavefront OBJ file (`v` and `f` lines, triangles)."""
+    @staticmethod
+    def from_csv(
+        vertex_file: PathLike,
+        facet_file: PathLike,
+        mass: Optional[float] = None,
+        *,
+        density: Optional[float] = None,
+        units: str = "m",
+        G: float = 1.0,
+    ) -> "Polyhedron":
+        """Reads a vertex/facet CSV pair (`filler,x,y,z`; 1-based `i,j,k,,`), as the Didymos
+        radar model is distributed."""
+    @property
+    def vertices(self) -> FloatArray:
+        """(N, 3) vertices in the body frame (centroid at the origin), metres."""
+    @property
+    def faces(self) -> npt.NDArray[np.int64]:
+        """(M, 3) 0-based vertex indices, counter-clockwise seen from outside."""
+    @property
+    def centroid(self) -> FloatArray:
+        """(3,) the input mesh's centroid in its own frame (metres)."""
+    @property
+    def units(self) -> str: ...
+    @property
+    def source(self) -> str:
+        """"arrays", the OBJ file, or "VERTICES + FACETS"."""
 
 class Interaction:
     """Force, torques (about each centroid) and mutual energy; world frame."""
