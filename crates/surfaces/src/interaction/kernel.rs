@@ -180,7 +180,7 @@ fn reflect_axial(v: &Vec3, axis: usize) -> Vec3 {
 }
 
 /// The solid loop over parallel slices of points and weighted area vectors (table frame),
-/// moments about `origin`.
+/// moments about `origin`: [`add_solid_node`] with each node's constants computed on the fly.
 #[inline(never)]
 pub(crate) fn solid_sums<P: Potential + ?Sized>(
     points: &[Vec3],
@@ -193,51 +193,29 @@ pub(crate) fn solid_sums<P: Potential + ?Sized>(
     let mut moment = CompensatedSum3::new();
     let mut gradient_moment = CompensatedSum3::new();
     let mut energy = CompensatedSum::new();
-    let (mut flux_size, mut moment_size, mut energy_size) = (0.0, 0.0, 0.0);
-    let mut potential_size = 0.0;
+    let mut sizes = SolidMagnitudes::default();
     // ∮ dS = 0 and ∮ x × dS = 0: the potential at the centroid can be taken out of the force
     // and torque sums, whose terms then shrink by the ratio of size to distance.
     let reference = source.potential(&map.apply(origin));
     for (block_points, block_weights) in points.chunks(BLOCK).zip(area_vectors.chunks(BLOCK)) {
-        let mut f = Vec3::zeros();
-        let mut m = Vec3::zeros();
-        let mut g = Vec3::zeros();
-        let mut e = 0.0;
+        let mut block = SolidBlock::default();
         for (r, w) in block_points.iter().zip(block_weights) {
             let field = source.field(&map.apply(r));
-            let phi = field.potential;
-            let a = map.back(&field.acceleration);
-            let x = r - origin;
-            let half_x2 = 0.5 * x.norm_squared();
-            let x_cross_w = x.cross(w);
-            let (e_potential, e_gradient) = (phi * x.dot(w), half_x2 * a.dot(w));
-            let relative = phi - reference;
-            f += w * relative;
-            m += x_cross_w * relative;
-            g += w.cross(&a) * half_x2;
-            e += e_potential + e_gradient;
-            let w_norm = w.norm();
-            flux_size += relative.abs() * w_norm;
-            potential_size += phi.abs() * w_norm;
-            moment_size += relative.abs() * x_cross_w.norm();
-            energy_size += e_potential.abs() + e_gradient.abs();
+            let k = NodeConstants::new(r - origin, w);
+            add_solid_node::<false, true>(&mut block, &mut sizes, &field, map, w, &k, reference);
         }
-        flux.add(&f);
-        moment.add(&m);
-        gradient_moment.add(&g);
-        energy.add(e);
+        flux.add(&block.flux);
+        moment.add(&block.moment);
+        gradient_moment.add(&block.gradient_moment);
+        energy.add(block.energy);
     }
-    SolidSums {
-        potential_flux: flux.value(),
-        potential_moment: moment.value(),
-        gradient_moment: gradient_moment.value(),
-        energy_flux: energy.value(),
-        potential_flux_magnitude: flux_size,
-        potential_moment_magnitude: moment_size,
-        energy_flux_magnitude: energy_size,
-        potential_magnitude: potential_size,
-        ..SolidSums::default()
-    }
+    sizes.sums(
+        flux.value(),
+        moment.value(),
+        gradient_moment.value(),
+        energy.value(),
+        Vec3::zeros(),
+    )
 }
 
 /// What a solid node's terms need besides the field, the point and the weighted area vector
@@ -377,6 +355,31 @@ pub(crate) fn add_solid_node<const FAR: bool, const FULL: bool>(
         block.flux += w * relative;
         sizes.flux += relative.abs() * k.w_norm;
     }
+}
+
+/// The solid integrand at a single node ([`add_solid_node`] with everything, near form): for
+/// rules that evaluate one node at a time (the adaptive cubature). `x` is the node's position
+/// from the centroid (table frame).
+#[inline]
+pub(crate) fn solid_node(
+    field: &Field,
+    map: &FrameMap,
+    x: Vec3,
+    w: &Vec3,
+    reference: Real,
+) -> SolidBlock {
+    let mut node = SolidBlock::default();
+    let k = NodeConstants::new(x, w);
+    add_solid_node::<false, true>(
+        &mut node,
+        &mut SolidMagnitudes::default(),
+        field,
+        map,
+        w,
+        &k,
+        reference,
+    );
+    node
 }
 
 /// A solid's node table with its per-node constants (the engine's cached form).
@@ -703,4 +706,104 @@ pub fn integrate_over_lamina<P: Potential + ?Sized>(
         &nodes.normal(),
         nodes.area_points().len() + nodes.rim_points().len(),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{BorrowedRule, EllipsoidSurface, Interval};
+    use surfgrav_potentials::{Pose, Spheroid};
+    use surfgrav_quadrature::{GaussLegendre, PeriodicTrapezoid, Rule1D};
+
+    /// A deterministic pseudo-random number in [-1, 1).
+    fn next(state: &mut u64) -> Real {
+        *state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((*state >> 11) as Real / (1u64 << 53) as Real) * 2.0 - 1.0
+    }
+
+    fn vector(state: &mut u64) -> Vec3 {
+        Vec3::new(next(state), next(state), next(state))
+    }
+
+    /// The one integrand ([`solid_node`], i.e. [`add_solid_node`]) against the formulas of
+    /// the module docs written out directly: force $\mathbf W(\Phi - \Phi_0)$, torque
+    /// $(\Phi - \Phi_0)\\,\mathbf x\times\mathbf W$, second torque $\tfrac12|\mathbf x|^2\\,\mathbf W\times\mathbf a$,
+    /// energy $(\Phi\mathbf x + \tfrac12|\mathbf x|^2\mathbf a)\cdot\mathbf W$, with $\mathbf a$ turned
+    /// back into the table frame. Tolerance: each term is a product of at most four factors
+    /// or a sum of three, so the two orders of evaluation differ by at most
+    /// [`ROUNDING_PER_TERM`](super::super::ROUNDING_PER_TERM), $4\epsilon$, of the sum of the
+    /// terms' magnitudes.
+    #[test]
+    fn the_node_integrand_is_the_documented_formula() {
+        let mut state = 12u64;
+        for _ in 0..1000 {
+            let pose = Pose::new(vector(&mut state) * 3.0, vector(&mut state));
+            let map = FrameMap::between(&pose, &Pose::identity()).unwrap();
+            let x = vector(&mut state);
+            let w = vector(&mut state) * 0.1;
+            let field = Field {
+                potential: -1.0 + 0.5 * next(&mut state),
+                acceleration: vector(&mut state),
+            };
+            let reference = -1.0 + 0.5 * next(&mut state);
+            let node = solid_node(&field, &map, x, &w, reference);
+            let phi = field.potential;
+            let a = map.rotation.transpose() * field.acceleration;
+            let half_x2 = 0.5 * x.norm_squared();
+            let bound = 4.0 * Real::EPSILON;
+            let close = |got: &Vec3, want: &Vec3, size: Real| {
+                (got - want).norm() <= bound * size.max(Real::MIN_POSITIVE)
+            };
+            let relative = phi - reference;
+            assert!(close(
+                &node.flux,
+                &(w * relative),
+                w.norm() * relative.abs()
+            ));
+            let moment = x.cross(&w) * relative;
+            assert!(close(
+                &node.moment,
+                &moment,
+                x.norm() * w.norm() * relative.abs()
+            ));
+            let gradient = w.cross(&a) * half_x2;
+            let size = w.norm() * a.norm() * half_x2;
+            assert!(close(&node.gradient_moment, &gradient, size));
+            let energy = (x * phi + a * half_x2).dot(&w);
+            let size = (x.norm() * phi.abs() + a.norm() * half_x2) * w.norm();
+            assert!((node.energy - energy).abs() <= bound * size);
+            assert_eq!(node.acceleration_flux, Vec3::zeros());
+        }
+    }
+
+    /// [`integrate_over_solid`]'s loop (constants computed per node) and the engine's cached
+    /// table loop ([`solid_table_sums`]) run the same integrand over the same nodes: every sum
+    /// and every magnitude agrees bit for bit.
+    #[test]
+    fn the_generic_loop_equals_the_table_loop_bit_for_bit() {
+        let surface = EllipsoidSurface::spheroid(1.0, 0.25).unwrap();
+        let azimuth = PeriodicTrapezoid::new(37, 0.0, 1.0).unwrap();
+        let height = GaussLegendre::new(21, -1.0, 1.0).unwrap();
+        let nodes = SurfaceNodes::with_periodic_rule(
+            &surface.azimuth_height(),
+            BorrowedRule::new(azimuth.nodes(), azimuth.weights(), Interval::UNIT).unwrap(),
+            BorrowedRule::new(height.nodes(), height.weights(), Interval::SYMMETRIC_UNIT).unwrap(),
+        )
+        .unwrap();
+        let source = Spheroid::new(0.8, 0.5, 1.3).unwrap();
+        let pose = Pose::new(Vec3::new(2.2, 0.4, -0.3), Vec3::new(0.2, -0.5, 0.3));
+        let map = FrameMap::between(&Pose::identity(), &pose).unwrap();
+        let generic = solid_sums(
+            nodes.points(),
+            nodes.weighted_area_vectors(),
+            &nodes.origin(),
+            &source,
+            &map,
+        );
+        let table = solid_table_sums::<_, false, true>(&SolidTable::new(nodes), &source, &map);
+        assert_eq!(generic, table);
+        assert!(generic.energy_flux < 0.0 && generic.potential_moment_magnitude > 0.0);
+    }
 }

@@ -10,7 +10,7 @@ use crate::interaction::assembly::{
 };
 use crate::interaction::body::{with_field, Body, BodyShape};
 use crate::interaction::error::InteractionError;
-use crate::interaction::kernel::{LaminaSums, SolidSums};
+use crate::interaction::kernel::{solid_node, LaminaSums, SolidSums};
 use crate::interaction::options::{Interaction, Method};
 use crate::interaction::surface_choice::Placement;
 use crate::{Real, Surface, Vec3};
@@ -167,22 +167,20 @@ fn solid_adaptive(
         integrator.integrate(rect, |u, v, out: &mut [Real; 10]| {
             let (r, w) = surface.point_and_area_vector(u, v);
             let field = f.field(&p.map.apply(&r));
-            let phi = field.potential;
-            let a = p.map.back(&field.acceleration);
-            let half_x2 = 0.5 * r.norm_squared();
-            let flux = w * ((phi - reference) * distance);
-            let moment = r.cross(&w) * (phi - reference);
-            let gradient = w.cross(&a) * half_x2;
+            // The kernel's one integrand; the force part scaled by the distance so that the
+            // integrator's error norm weighs it like the torques.
+            let node = solid_node(&field, &p.map, r, &w, reference);
+            let flux = node.flux * distance;
             out[0] = flux.x;
             out[1] = flux.y;
             out[2] = flux.z;
-            out[3] = moment.x;
-            out[4] = moment.y;
-            out[5] = moment.z;
-            out[6] = gradient.x;
-            out[7] = gradient.y;
-            out[8] = gradient.z;
-            out[9] = (r * phi + a * half_x2).dot(&w);
+            out[3] = node.moment.x;
+            out[4] = node.moment.y;
+            out[5] = node.moment.z;
+            out[6] = node.gradient_moment.x;
+            out[7] = node.gradient_moment.y;
+            out[8] = node.gradient_moment.z;
+            out[9] = node.energy;
         })
     })?;
     let v = &estimate.value;
