@@ -48,7 +48,9 @@
 //! lands in overlap), the step length from the last accepted sample is bisected until the contact
 //! time is found to round-off; the run stops with [`Termination::Contact`].
 
-use crate::interpolate::{state_between, EvenOutput};
+use crate::interpolate::{
+    emit_step, hermite_or_end, state_between, with_even_output, EvenOutput, EvenStates, OutputClock,
+};
 use crate::model::{InteractionError, InteractionModel};
 use crate::rigid;
 use crate::state::{Sample, TwoBodyState};
@@ -755,6 +757,50 @@ impl FixedStep {
 /// Largest number of fixed steps in one run.
 const MAX_FIXED_STEPS: Real = 1e15;
 
+/// The sample times of a fixed-step run over $[t_0, t_1]$: whole steps of $h$, then a last short
+/// one when the span is not a multiple of the step; $t_k = t_0 + k h$ (no accumulated round-off)
+/// and the last is $t_1$ exactly.
+pub(crate) struct FixedGrid {
+    t_start: Real,
+    t_end: Real,
+    step: Real,
+    /// The number of steps.
+    pub(crate) count: usize,
+}
+
+impl FixedGrid {
+    /// # Errors
+    /// [`DynamicsError::InvalidParameter`] for more than [`MAX_FIXED_STEPS`] steps.
+    pub(crate) fn new(t_start: Real, t_end: Real, step: Real) -> Result<Self, DynamicsError> {
+        let span = t_end - t_start;
+        let ratio = span / step;
+        if ratio > MAX_FIXED_STEPS {
+            return Err(DynamicsError::InvalidParameter {
+                name: "step",
+                requirement: "at least 1e-15 of the time span",
+                value: step,
+            });
+        }
+        let whole = (ratio * (1.0 + 8.0 * Real::EPSILON)).floor();
+        let extra = (ratio - whole) * step > 1e-12 * span;
+        Ok(Self {
+            t_start,
+            t_end,
+            step,
+            count: whole as usize + usize::from(extra),
+        })
+    }
+
+    /// The time at the end of step `k` (1 ≤ k ≤ `count`).
+    pub(crate) fn target(&self, k: usize) -> Real {
+        if k == self.count {
+            self.t_end
+        } else {
+            self.t_start + k as Real * self.step
+        }
+    }
+}
+
 /// Subdivisions allowed when stages overshoot into overlap without contact (2⁻⁴⁰ of a step).
 const MAX_SUBDIVISION_DEPTH: u32 = 40;
 
@@ -796,57 +842,17 @@ impl FixedStep {
     }
 }
 
-impl Integrator for FixedStep {
-    fn name(&self) -> &'static str {
-        self.scheme.name()
-    }
-
-    fn set_escape_distance(&mut self, distance: Option<Real>) -> Result<(), DynamicsError> {
-        self.escape_distance = check_escape_distance(distance)?;
-        Ok(())
-    }
-
-    fn integrate_with_output(
-        &mut self,
-        model: &dyn InteractionModel,
-        initial: &TwoBodyState,
-        t_start: Real,
-        t_end: Real,
-        interval: Real,
-        observer: &mut dyn FnMut(&Sample),
-        emit: &mut dyn FnMut(Real, &TwoBodyState),
-    ) -> Result<RunSummary, DynamicsError> {
-        let mut clock = OutputClock::new(t_start, interval)?;
-        if model.motion_path(initial).is_rotation() {
-            check_span(t_start, t_end)?;
-            return rigid::integrate(
-                self.rigid_method(),
-                model,
-                initial,
-                (t_start, t_end),
-                self.escape_distance,
-                observer,
-                Some((&mut clock, emit)),
-            );
-        }
-        let mut output = EvenOutput::new(interval).ok_or(DynamicsError::InvalidParameter {
-            name: "interval",
-            requirement: "positive and finite",
-            value: interval,
-        })?;
-        self.integrate(model, initial, t_start, t_end, &mut |sample| {
-            output.observe(sample, emit);
-            observer(sample);
-        })
-    }
-
-    fn integrate(
-        &mut self,
+impl FixedStep {
+    /// The fixed-step loop (translation here, rotation in [`rigid`]); `output` asks for evenly
+    /// spaced states, from the quintic Hermite interpolant of the samples.
+    fn run(
+        &self,
         model: &dyn InteractionModel,
         initial: &TwoBodyState,
         t_start: Real,
         t_end: Real,
         observer: &mut dyn FnMut(&Sample),
+        mut output: EvenStates<'_>,
     ) -> Result<RunSummary, DynamicsError> {
         check_span(t_start, t_end)?;
         if model.motion_path(initial).is_rotation() {
@@ -857,36 +863,22 @@ impl Integrator for FixedStep {
                 (t_start, t_end),
                 self.escape_distance,
                 observer,
-                None,
+                output,
             );
         }
         let mut dynamics = Dynamics::new(model, *initial, t_start);
         let mut current = initial_sample(&mut dynamics, initial, t_start)?;
+        emit_step(&mut output, &current, &current);
         observer(&current);
-        let span = t_end - t_start;
-        // Whole steps, then a last short one when the span is not a multiple of the step.
-        let ratio = span / self.step;
-        if ratio > MAX_FIXED_STEPS {
-            return Err(DynamicsError::InvalidParameter {
-                name: "step",
-                requirement: "at least 1e-15 of the time span",
-                value: self.step,
-            });
-        }
-        let whole = (ratio * (1.0 + 8.0 * Real::EPSILON)).floor();
-        let extra = (ratio - whole) * self.step > 1e-12 * span;
-        let count = whole as usize + usize::from(extra);
-        for k in 1..=count {
-            let target = if k == count {
-                t_end
-            } else {
-                t_start + k as Real * self.step
-            };
+        let grid = FixedGrid::new(t_start, t_end, self.step)?;
+        for k in 1..=grid.count {
+            let target = grid.target(k);
             let h = target - current.time;
             let result = self.one_step(&mut dynamics, &current, h);
             match classify(&dynamics, result, current.time)? {
                 Trial::Clear(mut next) => {
                     next.time = target;
+                    emit_step(&mut output, &current, &next);
                     current = next;
                     observer(&current);
                     if let Some(event) = escaped(model, self.escape_distance, &current) {
@@ -903,12 +895,14 @@ impl Integrator for FixedStep {
                     let event = match self.advance(&mut dynamics, &current, h, 0)? {
                         Advance::Reached(mut next) => {
                             next.time = target;
+                            emit_step(&mut output, &current, &next);
                             current = next;
                             observer(&current);
                             continue;
                         }
                         Advance::Contact(event) => event,
                     };
+                    emit_step(&mut output, &current, &event.sample);
                     observer(&event.sample);
                     return Ok(RunSummary {
                         last: event.sample,
@@ -922,10 +916,47 @@ impl Integrator for FixedStep {
         }
         Ok(RunSummary {
             last: current,
-            steps: count,
+            steps: grid.count,
             rejected_steps: 0,
             force_evaluations: dynamics.evaluations,
             termination: Termination::Completed,
+        })
+    }
+}
+
+impl Integrator for FixedStep {
+    fn name(&self) -> &'static str {
+        self.scheme.name()
+    }
+
+    fn set_escape_distance(&mut self, distance: Option<Real>) -> Result<(), DynamicsError> {
+        self.escape_distance = check_escape_distance(distance)?;
+        Ok(())
+    }
+
+    fn integrate(
+        &mut self,
+        model: &dyn InteractionModel,
+        initial: &TwoBodyState,
+        t_start: Real,
+        t_end: Real,
+        observer: &mut dyn FnMut(&Sample),
+    ) -> Result<RunSummary, DynamicsError> {
+        self.run(model, initial, t_start, t_end, observer, None)
+    }
+
+    fn integrate_with_output(
+        &mut self,
+        model: &dyn InteractionModel,
+        initial: &TwoBodyState,
+        t_start: Real,
+        t_end: Real,
+        interval: Real,
+        observer: &mut dyn FnMut(&Sample),
+        emit: &mut dyn FnMut(Real, &TwoBodyState),
+    ) -> Result<RunSummary, DynamicsError> {
+        with_even_output(t_start, interval, emit, |output| {
+            self.run(model, initial, t_start, t_end, observer, output)
         })
     }
 }
@@ -1374,25 +1405,23 @@ impl Adaptive {
         clock: &mut OutputClock,
         emit: &mut dyn FnMut(Real, &TwoBodyState),
     ) {
-        let mut dense: Option<Option<DenseStep>> = None;
-        while let Some(t) = clock.next_until(to.time) {
-            let state = if t == to.time {
-                to.state
-            } else if t <= from.time {
-                from.state
-            } else if self.pair == EmbeddedPair::Dop853 {
-                let step = dense
-                    .get_or_insert_with(|| self.dense_step(dynamics, from, to, h, k).ok())
-                    .as_ref();
-                match step {
-                    Some(step) => step.at(t).into_state(&from.state),
-                    None => state_between(from, to, t),
-                }
-            } else {
-                state_between(from, to, t)
-            };
-            emit(t, &state);
+        if self.pair != EmbeddedPair::Dop853 {
+            return clock.emit_between(from, to, emit);
         }
+        let mut dense: Option<Option<DenseStep>> = None;
+        let state_at = |t| {
+            if t == to.time || t <= from.time {
+                return hermite_or_end(from, to, t);
+            }
+            let step = dense
+                .get_or_insert_with(|| self.dense_step(dynamics, from, to, h, k).ok())
+                .as_ref();
+            match step {
+                Some(step) => step.at(t).into_state(&from.state),
+                None => state_between(from, to, t),
+            }
+        };
+        clock.emit_until(to.time, state_at, emit);
     }
 
     /// The adaptive loop shared by both pairs; `output` asks for evenly spaced states.
@@ -1437,11 +1466,7 @@ impl Adaptive {
         );
         let mut dynamics = Dynamics::new(model, *initial, t_start);
         let mut current = initial_sample(&mut dynamics, initial, t_start)?;
-        if let Some((clock, emit)) = output.as_mut() {
-            while let Some(t) = clock.next_until(current.time) {
-                emit(t, &current.state);
-            }
-        }
+        emit_step(&mut output, &current, &current);
         observer(&current);
         let mut k: Stages = [[Vec3::zeros(); 4]; MAX_STAGES];
         // Low-order part of the propagated state (compensated summation).
@@ -1500,9 +1525,8 @@ impl Adaptive {
                         continue;
                     };
                     if let Some((clock, emit)) = output.as_mut() {
-                        while let Some(t) = clock.next_until(event.sample.time) {
-                            emit(t, &state_between(&current, &event.sample, t));
-                        }
+                        let state_at = |t| state_between(&current, &event.sample, t);
+                        clock.emit_until(event.sample.time, state_at, *emit);
                     }
                     observer(&event.sample);
                     return Ok(RunSummary {
@@ -1548,43 +1572,6 @@ impl DenseStep {
     }
 }
 
-/// Where evenly spaced states go, if anywhere: the output times and the receiver.
-type EvenStates<'a> = Option<(&'a mut OutputClock, &'a mut dyn FnMut(Real, &TwoBodyState))>;
-
-/// Output times $t_0 + k\Delta$ (computed from $k$, no accumulated round-off).
-#[derive(Debug, Clone)]
-pub(crate) struct OutputClock {
-    start: Real,
-    interval: Real,
-    emitted: u64,
-}
-
-impl OutputClock {
-    pub(crate) fn new(start: Real, interval: Real) -> Result<Self, DynamicsError> {
-        if !(interval.is_finite() && interval > 0.0) {
-            return Err(DynamicsError::InvalidParameter {
-                name: "interval",
-                requirement: "positive and finite",
-                value: interval,
-            });
-        }
-        Ok(Self {
-            start,
-            interval,
-            emitted: 0,
-        })
-    }
-
-    /// The next output time if it is at most `until` (and counts it as emitted).
-    pub(crate) fn next_until(&mut self, until: Real) -> Option<Real> {
-        let t = self.start + self.emitted as Real * self.interval;
-        (t <= until).then(|| {
-            self.emitted += 1;
-            t
-        })
-    }
-}
-
 impl Integrator for Adaptive {
     fn name(&self) -> &'static str {
         self.pair.name()
@@ -1616,15 +1603,9 @@ impl Integrator for Adaptive {
         observer: &mut dyn FnMut(&Sample),
         emit: &mut dyn FnMut(Real, &TwoBodyState),
     ) -> Result<RunSummary, DynamicsError> {
-        let mut clock = OutputClock::new(t_start, interval)?;
-        self.run(
-            model,
-            initial,
-            t_start,
-            t_end,
-            observer,
-            Some((&mut clock, emit)),
-        )
+        with_even_output(t_start, interval, emit, |output| {
+            self.run(model, initial, t_start, t_end, observer, output)
+        })
     }
 }
 

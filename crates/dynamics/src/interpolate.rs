@@ -13,6 +13,7 @@
 //! error at the samples. It needs nothing from the integrator but the samples, so every method of
 //! this crate (fixed-step or adaptive) has the same dense output.
 
+use crate::integrate::DynamicsError;
 use crate::state::{Sample, TwoBodyState};
 use surfgrav_potentials::{Real, Vec3};
 
@@ -126,8 +127,7 @@ pub fn relative_between(first: &Sample, second: &Sample, time: Real) -> (Vec3, V
 #[derive(Debug, Clone)]
 pub struct EvenOutput {
     interval: Real,
-    start: Option<Real>,
-    emitted: u64,
+    clock: Option<OutputClock>,
     previous: Option<Sample>,
 }
 
@@ -136,29 +136,123 @@ impl EvenOutput {
     pub fn new(interval: Real) -> Option<Self> {
         (interval.is_finite() && interval > 0.0).then_some(Self {
             interval,
-            start: None,
-            emitted: 0,
+            clock: None,
             previous: None,
         })
     }
 
     /// Takes the next sample and emits every output time up to and including its time.
     pub fn observe(&mut self, sample: &Sample, emit: &mut dyn FnMut(Real, &TwoBodyState)) {
-        let start = *self.start.get_or_insert(sample.time);
+        let clock = self.clock.get_or_insert(OutputClock {
+            start: sample.time,
+            interval: self.interval,
+            emitted: 0,
+        });
         let first = self.previous.unwrap_or(*sample);
-        loop {
-            let time = start + self.emitted as Real * self.interval;
-            if time > sample.time {
-                break;
-            }
-            let state = if time == sample.time {
-                sample.state
-            } else {
-                state_between(&first, sample, time)
-            };
-            emit(time, &state);
-            self.emitted += 1;
-        }
+        clock.emit_between(&first, sample, emit);
         self.previous = Some(*sample);
+    }
+}
+
+/// Where a run sends evenly spaced states, if anywhere: the output times and the receiver.
+pub(crate) type EvenStates<'a> =
+    Option<(&'a mut OutputClock, &'a mut dyn FnMut(Real, &TwoBodyState))>;
+
+/// Output times $t_0 + k\Delta$ (computed from $k$, no accumulated round-off): the one output
+/// loop of every integrator ([`EvenOutput`], the fixed-step and adaptive runs, the rotational
+/// path).
+#[derive(Debug, Clone)]
+pub(crate) struct OutputClock {
+    start: Real,
+    interval: Real,
+    emitted: u64,
+}
+
+impl OutputClock {
+    /// Output every `interval` from `start`.
+    ///
+    /// # Errors
+    /// [`DynamicsError::InvalidParameter`] unless `interval` is positive and finite.
+    pub(crate) fn new(start: Real, interval: Real) -> Result<Self, DynamicsError> {
+        if !(interval.is_finite() && interval > 0.0) {
+            return Err(DynamicsError::InvalidParameter {
+                name: "interval",
+                requirement: "positive and finite",
+                value: interval,
+            });
+        }
+        Ok(Self {
+            start,
+            interval,
+            emitted: 0,
+        })
+    }
+
+    /// The next output time if it is at most `until` (and counts it as emitted).
+    fn next_until(&mut self, until: Real) -> Option<Real> {
+        let t = self.start + self.emitted as Real * self.interval;
+        (t <= until).then(|| {
+            self.emitted += 1;
+            t
+        })
+    }
+
+    /// Emits every output time up to and including `until`, in order, with the state
+    /// `state_at(t)`.
+    pub(crate) fn emit_until(
+        &mut self,
+        until: Real,
+        mut state_at: impl FnMut(Real) -> TwoBodyState,
+        emit: &mut dyn FnMut(Real, &TwoBodyState),
+    ) {
+        while let Some(t) = self.next_until(until) {
+            emit(t, &state_at(t));
+        }
+    }
+
+    /// Emits the output times of the step between consecutive samples `from` → `to`: a sample's
+    /// own state at its time, the quintic Hermite interpolant ([`state_between`]) inside.
+    pub(crate) fn emit_between(
+        &mut self,
+        from: &Sample,
+        to: &Sample,
+        emit: &mut dyn FnMut(Real, &TwoBodyState),
+    ) {
+        self.emit_until(to.time, |t| hermite_or_end(from, to, t), emit);
+    }
+}
+
+/// The state at `t` in the step `from` → `to`: the end samples' own states at (or beyond) the
+/// ends, [`state_between`] inside.
+pub(crate) fn hermite_or_end(from: &Sample, to: &Sample, t: Real) -> TwoBodyState {
+    if t == to.time {
+        to.state
+    } else if t <= from.time {
+        from.state
+    } else {
+        state_between(from, to, t)
+    }
+}
+
+/// Runs `run` with evenly spaced output every `interval` from `t_start` sent to `emit`.
+///
+/// # Errors
+/// [`DynamicsError::InvalidParameter`] for an interval that is not positive and finite, before
+/// `run` starts; then whatever `run` returns.
+pub(crate) fn with_even_output<R>(
+    t_start: Real,
+    interval: Real,
+    emit: &mut dyn FnMut(Real, &TwoBodyState),
+    run: impl FnOnce(EvenStates<'_>) -> Result<R, DynamicsError>,
+) -> Result<R, DynamicsError> {
+    let mut clock = OutputClock::new(t_start, interval)?;
+    run(Some((&mut clock, emit)))
+}
+
+/// Emits, if output is asked for, the output times of the step `from` → `to` (see
+/// [`OutputClock::emit_between`]).
+pub(crate) fn emit_step(output: &mut EvenStates<'_>, from: &Sample, to: &Sample) {
+    if let Some((clock, emit)) = output.as_mut() {
+        clock.emit_between(from, to, *emit);
     }
 }

@@ -60,10 +60,10 @@
 //! their values and derivatives at both ends (local error $O(h^4)$). Quaternions are normalised.
 
 use crate::integrate::{
-    check_span, escaped, ContactEvent, DynamicsError, FixedScheme, OutputClock, RunSummary,
+    check_span, escaped, ContactEvent, DynamicsError, FixedGrid, FixedScheme, RunSummary,
     StepControl, Termination,
 };
-use crate::interpolate::hermite_quintic;
+use crate::interpolate::{hermite_quintic, EvenStates};
 use crate::model::{InteractionError, InteractionModel, Wrench};
 use crate::state::{BodyState, Sample, TwoBodyState};
 use crate::tableau::{ErrorWeights, Tableau, DOP853, DOP853_D, DOP853_DENSE_A, MAX_STAGES};
@@ -689,9 +689,6 @@ impl Dense {
     }
 }
 
-/// Where evenly spaced states go.
-pub(crate) type Emit<'a> = Option<(&'a mut OutputClock, &'a mut dyn FnMut(Real, &TwoBodyState))>;
-
 /// Subdivisions allowed when stages overshoot into overlap without contact.
 const MAX_SUBDIVISION_DEPTH: u32 = 40;
 
@@ -871,12 +868,16 @@ impl System<'_> {
         }
     }
 
-    fn emit_between(&self, from: &Point, to: &Point, dense: Option<&Dense>, output: &mut Emit<'_>) {
+    fn emit_between(
+        &self,
+        from: &Point,
+        to: &Point,
+        dense: Option<&Dense>,
+        output: &mut EvenStates<'_>,
+    ) {
         if let Some((clock, emit)) = output.as_mut() {
-            while let Some(t) = clock.next_until(to.time) {
-                let state = self.between(from, to, t, dense);
-                emit(t, &self.two_body(&state));
-            }
+            let state_at = |t| self.two_body(&self.between(from, to, t, dense));
+            clock.emit_until(to.time, state_at, *emit);
         }
     }
 }
@@ -890,16 +891,12 @@ pub(crate) fn integrate(
     (t_start, t_end): (Real, Real),
     escape_distance: Option<Real>,
     observer: &mut dyn FnMut(&Sample),
-    mut output: Emit<'_>,
+    mut output: EvenStates<'_>,
 ) -> Result<RunSummary, DynamicsError> {
     check_span(t_start, t_end)?;
     let mut system = System::new(model);
     let mut current = system.initial(initial, t_start)?;
-    if let Some((clock, emit)) = output.as_mut() {
-        while let Some(t) = clock.next_until(current.time) {
-            emit(t, &system.two_body(&current.state));
-        }
-    }
+    system.emit_between(&current, &current, None, &mut output);
     observer(&system.sample(&current));
     let span = t_end - t_start;
     let finish = |system: &System<'_>, last: &Point, steps, rejected, termination| RunSummary {
@@ -915,27 +912,13 @@ pub(crate) fn integrate(
             weights,
             step,
         } => {
-            let ratio = span / step;
-            if ratio > 1e15 {
-                return Err(DynamicsError::InvalidParameter {
-                    name: "step",
-                    requirement: "at least 1e-15 of the time span",
-                    value: step,
-                });
-            }
-            let whole = (ratio * (1.0 + 8.0 * Real::EPSILON)).floor();
-            let extra = (ratio - whole) * step > 1e-12 * span;
-            let count = whole as usize + usize::from(extra);
+            let grid = FixedGrid::new(t_start, t_end, step)?;
             let mut one = |s: &mut System<'_>, from: &Point, h: Real| match scheme {
                 FixedScheme::RungeKutta4 => s.rk4_step(from, h),
                 _ => s.splitting_step(weights, from, h),
             };
-            for k in 1..=count {
-                let target = if k == count {
-                    t_end
-                } else {
-                    t_start + k as Real * step
-                };
+            for k in 1..=grid.count {
+                let target = grid.target(k);
                 let h = target - current.time;
                 match system.advance(&current, h, 0, &mut one)? {
                     Advance::Reached(mut next) => {
@@ -963,7 +946,13 @@ pub(crate) fn integrate(
                     }
                 }
             }
-            Ok(finish(&system, &current, count, 0, Termination::Completed))
+            Ok(finish(
+                &system,
+                &current,
+                grid.count,
+                0,
+                Termination::Completed,
+            ))
         }
         Method::Adaptive(settings) => {
             let mut control = StepControl::new(

@@ -198,3 +198,43 @@ fn compositions_are_time_reversible() {
         }
     }
 }
+
+/// Evenly spaced output of the fixed-step methods and of DP5(4) is the quintic Hermite
+/// interpolant of the samples they report: it equals [`EvenOutput`] fed with those samples, bit
+/// for bit (the same output loop serves both), at every output time over two orbits.
+#[test]
+fn even_output_is_the_hermite_interpolant_of_the_samples() {
+    use surfgrav_dynamics::interpolate::EvenOutput;
+    use surfgrav_dynamics::TwoBodyState;
+    let kepler = Kepler::new(0.5);
+    let t_end = 2.0 * kepler.period();
+    // An interval that is not a multiple of the step, so most output times fall inside steps.
+    let interval = 0.037;
+    let mut integrators: Vec<Box<dyn Integrator>> = [
+        FixedScheme::RungeKutta4,
+        FixedScheme::Leapfrog,
+        FixedScheme::Yoshida4,
+    ]
+    .into_iter()
+    .map(|scheme| Box::new(FixedStep::new(scheme, 0.01).unwrap()) as Box<dyn Integrator>)
+    .collect();
+    integrators.push(Box::new(Adaptive::new(1e-10, 1e-12).unwrap()));
+    for integrator in &mut integrators {
+        let mut reference = EvenOutput::new(interval).unwrap();
+        let mut expected: Vec<(Real, TwoBodyState)> = Vec::new();
+        let mut emitted: Vec<(Real, TwoBodyState)> = Vec::new();
+        integrator
+            .integrate_with_output(
+                &kepler.model,
+                &kepler.initial_state(),
+                0.0,
+                t_end,
+                interval,
+                &mut |sample| reference.observe(sample, &mut |t, s| expected.push((t, *s))),
+                &mut |t, s| emitted.push((t, *s)),
+            )
+            .unwrap();
+        assert_eq!(emitted.len(), (t_end / interval) as usize + 1);
+        assert_eq!(emitted, expected, "{}", integrator.name());
+    }
+}
