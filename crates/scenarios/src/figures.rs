@@ -39,7 +39,7 @@ use crate::plot::{
 };
 use crate::scene::{FigureKind, Scene, G_SI};
 use crate::simulate::RunRecord;
-use crate::spec::{BodyKind, BodySpec};
+use crate::spec::Spec;
 
 /// Points of a drawn path, in data units.
 type Path2 = Vec<(Real, Real)>;
@@ -115,15 +115,8 @@ impl Units {
 }
 
 /// Semi-axes of a body along its body axes x, y, z (`None` for a point mass; a disk has c = 0).
-pub fn semi_axes(spec: &BodySpec) -> Option<[Real; 3]> {
-    let d = &spec.dimensions;
-    match spec.kind {
-        BodyKind::Point => None,
-        BodyKind::Sphere => Some([d[0]; 3]),
-        BodyKind::Spheroid => Some([d[0], d[0], d[1]]),
-        BodyKind::Ellipsoid => Some([d[0], d[1], d[2]]),
-        BodyKind::Disk => Some([d[0], d[0], 0.0]),
-    }
+pub fn semi_axes(spec: &Spec) -> Option<[Real; 3]> {
+    spec.semi_axes()
 }
 
 /// The outline of a body (semi-axes `axes`, at `state`'s orientation) projected onto the plane
@@ -230,7 +223,7 @@ fn project(p: &Vec3, view: &View) -> (Real, Real) {
 }
 
 fn outline_series(
-    spec: &BodySpec,
+    spec: &Spec,
     state: &BodyState,
     view: &View,
     centre: (Real, Real),

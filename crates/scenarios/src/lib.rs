@@ -6,6 +6,7 @@
 pub mod bench;
 pub mod cli;
 pub mod figures;
+pub mod kinds;
 pub mod output;
 pub mod plot;
 pub mod presets;

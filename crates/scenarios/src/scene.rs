@@ -78,7 +78,8 @@ use surfgrav_dynamics::{BodyState, Integrator, IntegratorKind, TwoBodyState};
 use surfgrav_potentials::{Real, Vec3};
 use toml::Spanned;
 
-use crate::spec::{compact, Amount, BodyKind, BodySpec, BuiltBody};
+use crate::kinds::{self, Given, ValueKind, Values};
+use crate::spec::{compact, Amount, BuiltBody, Spec};
 
 /// The gravitational constant in SI units (CODATA 2018), m³ kg⁻¹ s⁻².
 pub const G_SI: Real = 6.674_30e-11;
@@ -112,60 +113,166 @@ impl fmt::Display for SceneError {
 
 impl std::error::Error for SceneError {}
 
-/// The shapes a scene body can have.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Shape {
-    /// A point mass.
-    Point,
-    /// A homogeneous sphere.
-    Sphere,
-    /// A homogeneous spheroid (symmetry axis along the body z axis).
-    Spheroid,
-    /// A homogeneous triaxial ellipsoid (semi-axes along body x, y, z).
-    Ellipsoid,
-    /// A thin uniform disk in the body x–y plane.
-    Disk,
-}
-
-/// One body as written in a scene file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// One body as written in a scene file: its kind (`shape`), the kind's own keys (sizes, a
+/// mesh: see [`crate::kinds`]), and the keys every body has.
+#[derive(Debug, Clone, PartialEq)]
 pub struct BodyFile {
-    /// The shape.
-    pub shape: Spanned<Shape>,
-    /// Radius of a sphere or disk.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub radius: Option<Spanned<Real>>,
-    /// Equatorial radius `a` of a spheroid.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub equatorial_radius: Option<Spanned<Real>>,
-    /// Polar radius `c` of a spheroid (along its symmetry axis).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub polar_radius: Option<Spanned<Real>>,
-    /// Semi-axes `[a, b, c]` of an ellipsoid, along body x, y, z.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub semi_axes: Option<Spanned<[Real; 3]>>,
+    /// The kind's name (`point`, `sphere`, ..., `polyhedron`: [`crate::kinds::REGISTRY`]).
+    pub shape: Spanned<String>,
+    /// The kind's own keys as written, in file order (checked against the kind by
+    /// [`SceneFile::parse`] and [`SceneFile::build`]).
+    pub keys: Vec<(String, Spanned<toml::Value>)>,
     /// Total mass.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mass: Option<Spanned<Real>>,
     /// Density (solids only), instead of the mass.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub density: Option<Spanned<Real>>,
     /// Initial centroid position (world frame).
     pub position: Spanned<[Real; 3]>,
     /// Initial centroid velocity (world frame).
     pub velocity: Spanned<[Real; 3]>,
     /// Orientation as a rotation vector (axis × angle, radians), body frame → world frame.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub orientation: Option<Spanned<[Real; 3]>>,
     /// Angular velocity (world frame, radians per time unit). `spin` is read as this key.
-    #[serde(default, alias = "spin", skip_serializing_if = "Option::is_none")]
     pub angular_velocity: Option<Spanned<[Real; 3]>>,
     /// Angular velocity in the body frame (radians per time unit), instead of
     /// `angular_velocity`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angular_velocity_body: Option<Spanned<[Real; 3]>>,
+}
+
+/// The keys every body has, besides the kind's own.
+const COMMON_KEYS: [&str; 9] = [
+    "shape",
+    "mass",
+    "density",
+    "position",
+    "velocity",
+    "orientation",
+    "angular_velocity",
+    "spin",
+    "angular_velocity_body",
+];
+
+impl<'de> Deserialize<'de> for BodyFile {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = BodyFile;
+
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a body table")
+            }
+
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> Result<BodyFile, A::Error> {
+                use serde::de::Error;
+                let mut shape = None;
+                let mut keys = Vec::new();
+                let (mut mass, mut density) = (None, None);
+                let (mut position, mut velocity, mut orientation) = (None, None, None);
+                let (mut angular_velocity, mut angular_velocity_body) = (None, None);
+                while let Some(key) = map.next_key::<String>()? {
+                    match key.as_str() {
+                        "shape" => shape = Some(map.next_value()?),
+                        "mass" => mass = Some(map.next_value()?),
+                        "density" => density = Some(map.next_value()?),
+                        "position" => position = Some(map.next_value()?),
+                        "velocity" => velocity = Some(map.next_value()?),
+                        "orientation" => orientation = Some(map.next_value()?),
+                        "angular_velocity" | "spin" => {
+                            if angular_velocity.is_some() {
+                                return Err(A::Error::duplicate_field("angular_velocity"));
+                            }
+                            angular_velocity = Some(map.next_value()?);
+                        }
+                        "angular_velocity_body" => {
+                            angular_velocity_body = Some(map.next_value()?);
+                        }
+                        _ => keys.push((key, map.next_value()?)),
+                    }
+                }
+                Ok(BodyFile {
+                    shape: shape.ok_or_else(|| A::Error::missing_field("shape"))?,
+                    keys,
+                    mass,
+                    density,
+                    position: position.ok_or_else(|| A::Error::missing_field("position"))?,
+                    velocity: velocity.ok_or_else(|| A::Error::missing_field("velocity"))?,
+                    orientation,
+                    angular_velocity,
+                    angular_velocity_body,
+                })
+            }
+        }
+        deserializer.deserialize_map(Visitor)
+    }
+}
+
+impl Serialize for BodyFile {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(None)?;
+        map.serialize_entry("shape", &self.shape)?;
+        for (key, value) in &self.keys {
+            map.serialize_entry(key, value)?;
+        }
+        let optional = [("mass", &self.mass), ("density", &self.density)];
+        for (key, value) in optional {
+            if let Some(v) = value {
+                map.serialize_entry(key, v)?;
+            }
+        }
+        map.serialize_entry("position", &self.position)?;
+        map.serialize_entry("velocity", &self.velocity)?;
+        let vectors = [
+            ("orientation", &self.orientation),
+            ("angular_velocity", &self.angular_velocity),
+            ("angular_velocity_body", &self.angular_velocity_body),
+        ];
+        for (key, value) in vectors {
+            if let Some(v) = value {
+                map.serialize_entry(key, v)?;
+            }
+        }
+        map.end()
+    }
+}
+
+impl BodyFile {
+    /// The kind named by `shape`, and no key that no kind has: a [`SceneError`] at the line.
+    fn check_keys(&self, loc: &Locator<'_>, table: &str) -> Result<(), SceneError> {
+        let name = self.shape.get_ref();
+        if kinds::find(name).is_none() {
+            let expected = kinds::REGISTRY
+                .iter()
+                .map(|k| format!("`{}`", k.name))
+                .collect::<Vec<_>>()
+                .join(", ");
+            return Err(loc.at(
+                &self.shape,
+                &format!("{table}.shape"),
+                format!("unknown variant `{name}`, expected one of {expected}"),
+            ));
+        }
+        for (key, value) in &self.keys {
+            if !kinds::is_scene_key(key) {
+                let expected = COMMON_KEYS
+                    .iter()
+                    .copied()
+                    .chain(kinds::all_scene_keys())
+                    .map(|k| format!("`{k}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                return Err(loc.at(
+                    value,
+                    &format!("{table}.{key}"),
+                    format!("unknown field `{key}`, expected one of {expected}"),
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// The integrator as written in a scene file.
@@ -341,10 +448,10 @@ pub struct Scene {
     pub description: Option<String>,
     /// The gravitational constant.
     pub gravitational_constant: Real,
-    /// Body A as a spec (kind, dimensions, mass or density).
-    pub spec_a: BodySpec,
+    /// Body A as a spec (kind, its values, mass or density).
+    pub spec_a: Spec,
     /// Body B.
-    pub spec_b: BodySpec,
+    pub spec_b: Spec,
     /// Body A, validated.
     pub body_a: BuiltBody,
     /// Body B, validated.
@@ -367,6 +474,9 @@ pub struct Scene {
     pub output: OutputCadence,
     /// Figures to draw.
     pub figures: Vec<FigureKind>,
+    /// What was done to read the bodies, for the user (a mesh's file, size and frame), one
+    /// line each.
+    pub notes: Vec<String>,
 }
 
 /// The default escape distance, in initial separations: far enough that a bound orbit of a
@@ -412,7 +522,7 @@ impl SceneFile {
     /// # Errors
     /// Malformed TOML, unknown or missing fields, values of the wrong type, each with the line.
     pub fn parse(source: &str, file: &str) -> Result<Self, SceneError> {
-        toml::from_str(source).map_err(|e| {
+        let scene: Self = toml::from_str(source).map_err(|e| {
             let start = e.span().map(|s| s.start);
             let mut message = e.message().trim().replace('\n', " ");
             // The TOML parser says "duplicate key" without the key: name it, from the text at
@@ -436,7 +546,11 @@ impl SceneFile {
                     .map(|t| format!("[{t}]")),
                 message,
             }
-        })
+        })?;
+        let loc = Locator { file, source };
+        scene.body_a.get_ref().check_keys(&loc, "body_a")?;
+        scene.body_b.get_ref().check_keys(&loc, "body_b")?;
+        Ok(scene)
     }
 
     /// Reads and parses a scene file.
@@ -531,8 +645,13 @@ impl SceneFile {
             ));
         }
 
-        let (spec_a, body_a, state_a) = build_body(&loc, &self.body_a, "body_a", g)?;
-        let (spec_b, body_b, state_b) = build_body(&loc, &self.body_b, "body_b", g)?;
+        let folder = Path::new(file).parent();
+        let (spec_a, body_a, state_a) = build_body(&loc, &self.body_a, "body_a", g, folder)?;
+        let (spec_b, body_b, state_b) = build_body(&loc, &self.body_b, "body_b", g, folder)?;
+        let notes = [("body_a", &body_a), ("body_b", &body_b)]
+            .iter()
+            .filter_map(|(table, b)| b.note().map(|n| format!("{table}: {n}")))
+            .collect();
         let initial = TwoBodyState::new(state_a, state_b);
         if initial.separation() == 0.0 {
             return Err(loc.at(
@@ -664,6 +783,7 @@ impl SceneFile {
             tabulate: self.interaction.tabulate.unwrap_or(true),
             output,
             figures,
+            notes,
         })
     }
 }
@@ -673,53 +793,25 @@ fn build_body(
     body: &Spanned<BodyFile>,
     table: &str,
     g: Real,
-) -> Result<(BodySpec, BuiltBody, BodyState), SceneError> {
+    folder: Option<&Path>,
+) -> Result<(Spec, BuiltBody, BodyState), SceneError> {
     let b = body.get_ref();
-    let shape = *b.shape.get_ref();
+    b.check_keys(loc, table)?;
+    let shape_name = b.shape.get_ref().as_str();
+    let Some(kind) = kinds::find(shape_name) else {
+        return Err(loc.at(&b.shape, &format!("{table}.shape"), "unknown shape"));
+    };
     let field = |name: &str| format!("{table}.{name}");
-    // Which size fields the shape takes.
-    let takes: &[&str] = match shape {
-        Shape::Point => &[],
-        Shape::Sphere | Shape::Disk => &["radius"],
-        Shape::Spheroid => &["equatorial_radius", "polar_radius"],
-        Shape::Ellipsoid => &["semi_axes"],
-    };
-    let shape_name = match shape {
-        Shape::Point => "point",
-        Shape::Sphere => "sphere",
-        Shape::Spheroid => "spheroid",
-        Shape::Ellipsoid => "ellipsoid",
-        Shape::Disk => "disk",
-    };
-    let given: [(&str, Option<usize>); 4] = [
-        ("radius", b.radius.as_ref().map(|s| s.span().start)),
-        (
-            "equatorial_radius",
-            b.equatorial_radius.as_ref().map(|s| s.span().start),
-        ),
-        (
-            "polar_radius",
-            b.polar_radius.as_ref().map(|s| s.span().start),
-        ),
-        ("semi_axes", b.semi_axes.as_ref().map(|s| s.span().start)),
-    ];
-    for (name, at) in given {
-        if let Some(start) = at {
-            if !takes.contains(&name) {
-                let expected = if takes.is_empty() {
-                    "no size".to_string()
-                } else {
-                    takes.join(" and ")
-                };
-                return Err(SceneError {
-                    file: loc.file.to_string(),
-                    line: Some(line_of(loc.source, start)),
-                    field: Some(field(name)),
-                    message: format!(
-                        "a {shape_name} has no {name}; it takes {expected}: remove this line or change the shape"
-                    ),
-                });
-            }
+    for (name, value) in &b.keys {
+        if kind.key(name).is_none() {
+            return Err(loc.at(
+                value,
+                &field(name),
+                format!(
+                    "a {shape_name} has no {name}; it takes {}: remove this line or change the shape",
+                    kind.scene_keys_text()
+                ),
+            ));
         }
     }
     let missing = |name: &str| {
@@ -729,46 +821,98 @@ fn build_body(
             format!("a {shape_name} needs {name}: add it to [{table}]"),
         )
     };
-    let size = |value: &Option<Spanned<Real>>, name: &str| -> Result<Real, SceneError> {
-        let v = value.as_ref().ok_or_else(|| missing(name))?;
-        let x = *v.get_ref();
-        if x.is_finite() && x > 0.0 {
-            Ok(x)
-        } else {
-            Err(loc.at(
-                v,
-                &field(name),
-                format!("must be a positive finite length, got {}", compact(x)),
-            ))
-        }
-    };
-    let (kind, dimensions) = match shape {
-        Shape::Point => (BodyKind::Point, vec![]),
-        Shape::Sphere => (BodyKind::Sphere, vec![size(&b.radius, "radius")?]),
-        Shape::Disk => (BodyKind::Disk, vec![size(&b.radius, "radius")?]),
-        Shape::Spheroid => (
-            BodyKind::Spheroid,
-            vec![
-                size(&b.equatorial_radius, "equatorial_radius")?,
-                size(&b.polar_radius, "polar_radius")?,
-            ],
-        ),
-        Shape::Ellipsoid => {
-            let v = b.semi_axes.as_ref().ok_or_else(|| missing("semi_axes"))?;
-            let axes = *v.get_ref();
-            if !axes.iter().all(|x| x.is_finite() && *x > 0.0) {
-                return Err(loc.at(
-                    v,
-                    &field("semi_axes"),
-                    format!(
-                        "must be three positive finite lengths [a, b, c], got [{}]",
-                        axes.map(compact).join(", ")
-                    ),
-                ));
+    let mut values = Vec::new();
+    for key in kind.keys {
+        let Some((_, v)) = b.keys.iter().find(|(k, _)| k == key.scene) else {
+            if key.required {
+                return Err(missing(key.scene));
             }
-            (BodyKind::Ellipsoid, axes.to_vec())
-        }
-    };
+            continue;
+        };
+        let name = key.scene;
+        let value = match key.value {
+            ValueKind::Length => {
+                let x = number(v.get_ref()).ok_or_else(|| {
+                    loc.at(
+                        v,
+                        &field(name),
+                        "must be a positive finite length (a number)",
+                    )
+                })?;
+                Given::Number(kinds::positive_length(x).map_err(|m| loc.at(v, &field(name), m))?)
+            }
+            ValueKind::Lengths => {
+                let n = key.cli.len();
+                let xs: Option<Vec<Real>> = match v.get_ref() {
+                    toml::Value::Array(items) if items.len() == n => {
+                        items.iter().map(number).collect()
+                    }
+                    _ => None,
+                };
+                let names = key.cli.join(", ");
+                match xs {
+                    Some(xs) if xs.iter().all(|x| x.is_finite() && *x > 0.0) => Given::Numbers(xs),
+                    Some(xs) => {
+                        return Err(loc.at(
+                            v,
+                            &field(name),
+                            format!(
+                                "must be {n} positive finite lengths [{names}], got [{}]",
+                                xs.iter()
+                                    .map(|&x| compact(x))
+                                    .collect::<Vec<_>>()
+                                    .join(", ")
+                            )
+                            .replacen(
+                                "must be 3 ",
+                                "must be three ",
+                                1,
+                            ),
+                        ))
+                    }
+                    None => {
+                        return Err(loc.at(
+                            v,
+                            &field(name),
+                            format!("must be an array of {n} lengths [{names}]"),
+                        ))
+                    }
+                }
+            }
+            ValueKind::Path => match v.get_ref() {
+                toml::Value::String(p) if !p.trim().is_empty() => {
+                    Given::Text(kinds::polyhedron::resolve(p.trim(), folder))
+                }
+                _ => return Err(loc.at(v, &field(name), "must be a file path (a string)")),
+            },
+            ValueKind::Unit => match v.get_ref() {
+                toml::Value::String(u) if u == "m" || u == "km" => Given::Text(u.clone()),
+                other => {
+                    return Err(loc.at(
+                        v,
+                        &field(name),
+                        format!("must be \"m\" or \"km\", got {other}"),
+                    ))
+                }
+            },
+            ValueKind::Flag => match v.get_ref() {
+                toml::Value::Boolean(f) => Given::Flag(*f),
+                other => {
+                    return Err(loc.at(
+                        v,
+                        &field(name),
+                        format!("must be true or false, got {other}"),
+                    ))
+                }
+            },
+        };
+        values.push((key.scene, value));
+    }
+    let values = Values(values);
+    (kind.check)(&values).map_err(|e| match b.keys.iter().find(|(k, _)| k == e.key) {
+        Some((_, v)) => loc.at(v, &field(e.key), e.message),
+        None => loc.at(&b.shape, &field(e.key), e.message),
+    })?;
     let amount_value = |v: &Spanned<Real>, name: &str| -> Result<Real, SceneError> {
         let x = *v.get_ref();
         if x.is_finite() && x > 0.0 {
@@ -791,7 +935,7 @@ fn build_body(
         }
         (Some(m), None) => Amount::Mass(amount_value(m, "mass")?),
         (None, Some(d)) => {
-            if matches!(shape, Shape::Point | Shape::Disk) {
+            if !kind.solid {
                 return Err(loc.at(
                     d,
                     &field("density"),
@@ -808,14 +952,28 @@ fn build_body(
             ))
         }
     };
-    let spec = BodySpec {
+    let spec = Spec {
         kind,
-        dimensions,
+        values,
         amount,
     };
-    let built = spec
-        .build(g)
-        .map_err(|e| loc.at(&b.shape, table, e.to_string()))?;
+    // A mesh that cannot be read or used is blamed on its `mesh` line.
+    let blame = b.keys.iter().find(|(k, _)| k == "mesh").map_or_else(
+        || loc.at(&b.shape, table, ""),
+        |(_, v)| loc.at(v, &field("mesh"), ""),
+    );
+    let built = spec.build(g).map_err(|e| {
+        let at = match e {
+            crate::spec::SpecError::Mesh { .. } | crate::spec::SpecError::Polyhedron { .. } => {
+                blame.clone()
+            }
+            _ => loc.at(&b.shape, table, ""),
+        };
+        SceneError {
+            message: e.to_string(),
+            ..at
+        }
+    })?;
     let vec3 = |v: &Spanned<[Real; 3]>, name: &str| -> Result<Vec3, SceneError> {
         let a = *v.get_ref();
         if a.iter().all(|x| x.is_finite()) {
@@ -844,7 +1002,7 @@ fn build_body(
         }
         (None, None) => {}
     }
-    if shape == Shape::Point && state.angular_velocity != Vec3::zeros() {
+    if kind.name == "point" && state.angular_velocity != Vec3::zeros() {
         let message =
             "a point mass cannot rotate: remove the angular velocity or give the body a size";
         return Err(
@@ -859,6 +1017,15 @@ fn build_body(
         );
     }
     Ok((spec, built, state))
+}
+
+/// A TOML number (integer or float) as a real.
+fn number(v: &toml::Value) -> Option<Real> {
+    match v {
+        toml::Value::Float(x) => Some(*x),
+        toml::Value::Integer(i) => Some(*i as Real),
+        _ => None,
+    }
 }
 
 fn build_integrator(
@@ -1046,7 +1213,7 @@ fn step_fits(step: Real, span: Real) -> Result<(), String> {
 /// The orbit's dynamical time at the start, $\tau = \sqrt{r^3 / (G(m_A + m_B))}$ (a circular
 /// orbit of radius r has period $2\pi\tau$; paper-2s: τ = 13.1, T_r = 47.4).
 fn dynamical_time(initial: &TwoBodyState, body_a: &BuiltBody, body_b: &BuiltBody, g: Real) -> Real {
-    let mass = body_a.into_potential().mass() + body_b.into_potential().mass();
+    let mass = body_a.potential().mass() + body_b.potential().mass();
     let r = initial.separation();
     (r * r * r / (g * mass)).sqrt()
 }
@@ -1079,10 +1246,7 @@ fn check_in_range(
     body_b: &BuiltBody,
     g: Real,
 ) -> Result<(), String> {
-    let (ma, mb) = (
-        body_a.into_potential().mass(),
-        body_b.into_potential().mass(),
-    );
+    let (ma, mb) = (body_a.potential().mass(), body_b.potential().mass());
     let (a, b) = (&initial.body_a, &initial.body_b);
     let separation = initial.separation();
     let quantities = [

@@ -80,7 +80,7 @@ impl PreparedModel {
 /// a table cannot be built.
 pub fn prepare(scene: &Scene) -> Result<PreparedModel, RunError> {
     let start = Instant::now();
-    if let (BuiltBody::Point(a), BuiltBody::Point(b)) = (scene.body_a, scene.body_b) {
+    if let (BuiltBody::Point(a), BuiltBody::Point(b)) = (&scene.body_a, &scene.body_b) {
         use surfgrav_potentials::Potential;
         let model = PointMasses::new(a.mass(), b.mass(), scene.gravitational_constant)
             .ok_or_else(|| RunError::Input("point masses must be positive and finite".into()))?;
@@ -92,7 +92,7 @@ pub fn prepare(scene: &Scene) -> Result<PreparedModel, RunError> {
             path,
         });
     }
-    let body = |b: BuiltBody, name: &str| {
+    let body = |b: &BuiltBody, name: &str| {
         b.into_interaction_body()
             .map_err(|e| RunError::Input(format!("{name}: {e}")))
     };
@@ -105,8 +105,8 @@ pub fn prepare(scene: &Scene) -> Result<PreparedModel, RunError> {
         ..SceneSettings::default()
     };
     let model = SceneModel::build(
-        body(scene.body_a, "body_a")?,
-        body(scene.body_b, "body_b")?,
+        body(&scene.body_a, "body_a")?,
+        body(&scene.body_b, "body_b")?,
         &scene.initial,
         &settings,
     )

@@ -7,6 +7,11 @@
 //! | `spheroid` | `equatorial`, `polar`, `mass` or `density`   |
 //! | `ellipsoid`| `a`, `b`, `c` (semi-axes along x, y, z), `mass` or `density` |
 //! | `disk`     | `radius`, `mass`                             |
+//! | `polyhedron` | `mesh` (a path: `.obj`, or a vertex `.csv` with `facets`), `units` (`m` or `km`), `principal_axes`, `mass` or `density` |
+//!
+//! The kinds, their keys and how each becomes a body are the registry of [`crate::kinds`],
+//! which the scene files share. [`Spec`] holds a spec of any registered kind; [`BodySpec`] is
+//! the typed view of the five closed-form kinds.
 //!
 //! Parsing never panics: every malformed spec is a [`SpecError`] whose message says what to
 //! change.
@@ -14,25 +19,32 @@
 use std::collections::BTreeMap;
 use std::fmt;
 use std::str::FromStr;
+use std::sync::Arc;
 
 use surfgrav_potentials::{
-    BodyError, Ellipsoid, PointMass, Potential, Sphere, Spheroid, UniformDisk, Vec3,
+    BodyError, Ellipsoid, MeshError, PointMass, Potential, Real, Sphere, Spheroid, UniformDisk,
+    Vec3,
 };
 use surfgrav_surfaces::interaction::{Body, InteractionError};
 use thiserror::Error;
+
+use crate::kinds::{self, polyhedron::PolyhedronBody, Given, Kind, ValueKind, Values};
 
 /// Why a body spec or a vector argument could not be used.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
 pub enum SpecError {
     /// No `kind:` prefix.
-    #[error("body spec `{spec}` has no kind: write it as KIND:key=value,... with KIND one of point, sphere, spheroid, ellipsoid, disk")]
+    #[error(
+        "body spec `{spec}` has no kind: write it as KIND:key=value,... with KIND one of {}",
+        kinds::names_text("or")
+    )]
     MissingKind {
         /// The spec as given.
         spec: String,
     },
     /// The kind is not one we know.
-    #[error("unknown body kind `{kind}`: expected point, sphere, spheroid, ellipsoid or disk")]
+    #[error("unknown body kind `{kind}`: expected {}", kinds::names_text("or"))]
     UnknownKind {
         /// The rejected kind.
         kind: String,
@@ -51,7 +63,7 @@ pub enum SpecError {
         /// The rejected key.
         key: String,
         /// The keys this kind takes.
-        expected: &'static str,
+        expected: String,
     },
     /// A key given twice.
     #[error("key `{key}` is given twice")]
@@ -81,6 +93,26 @@ pub enum SpecError {
         /// The rejected text.
         value: String,
     },
+    /// A value that is not one of the allowed words.
+    #[error("`{key}={value}`: expected {expected}")]
+    BadValue {
+        /// The key.
+        key: String,
+        /// The rejected text.
+        value: String,
+        /// What is allowed.
+        expected: &'static str,
+    },
+    /// Values that do not fit together (a kind's own check).
+    #[error("{kind}: {key}: {message}")]
+    Invalid {
+        /// The body kind.
+        kind: &'static str,
+        /// The key at fault (as the command line spells it).
+        key: &'static str,
+        /// What to change.
+        message: String,
+    },
     /// A vector with the wrong number of components or a bad component.
     #[error("{what} must be three comma-separated finite numbers X,Y,Z, got `{value}`")]
     BadVector {
@@ -98,9 +130,40 @@ pub enum SpecError {
         #[source]
         source: BodyError,
     },
+    /// A mesh could not be read, or is not a closed outward surface.
+    #[error("polyhedron: {}", mesh_error_message(.path, .source))]
+    Mesh {
+        /// The mesh file(s).
+        path: String,
+        /// The reader's or the validation's error.
+        #[source]
+        source: MeshError,
+    },
+    /// Any other refusal of a polyhedron.
+    #[error("polyhedron: {message}")]
+    Polyhedron {
+        /// What went wrong.
+        message: String,
+    },
+    /// A [`BodySpec`] can only hold the closed-form kinds.
+    #[error("a {kind} is not a closed-form body: use spec::Spec for it")]
+    NotClosedForm {
+        /// The body kind.
+        kind: &'static str,
+    },
 }
 
-/// The kinds of body a spec can name.
+/// A mesh error with the file named once.
+fn mesh_error_message(path: &str, e: &MeshError) -> String {
+    match e {
+        MeshError::Io { .. } => format!("cannot read the mesh: {e}"),
+        MeshError::Parse { .. } | MeshError::NotTriangle { .. } => e.to_string(),
+        _ => format!("the mesh {path} does not bound a solid: {e}"),
+    }
+}
+
+/// The closed-form kinds, as the Python bindings name them (a typed view of the registry's
+/// first five kinds).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BodyKind {
     /// A point mass.
@@ -116,7 +179,8 @@ pub enum BodyKind {
 }
 
 impl BodyKind {
-    fn name(self) -> &'static str {
+    /// The registry's name of the kind.
+    pub fn name(self) -> &'static str {
         match self {
             BodyKind::Point => "point",
             BodyKind::Sphere => "sphere",
@@ -126,19 +190,26 @@ impl BodyKind {
         }
     }
 
-    /// Geometric keys, in order, then whether `density` is accepted.
-    fn keys(self) -> (&'static [&'static str], bool, &'static str) {
-        match self {
-            BodyKind::Point => (&[], false, "mass"),
-            BodyKind::Sphere => (&["radius"], true, "radius, mass or density"),
-            BodyKind::Spheroid => (
-                &["equatorial", "polar"],
-                true,
-                "equatorial, polar, mass or density",
-            ),
-            BodyKind::Ellipsoid => (&["a", "b", "c"], true, "a, b, c, mass or density"),
-            BodyKind::Disk => (&["radius"], false, "radius, mass"),
-        }
+    /// The registry's entry.
+    pub fn kind(self) -> &'static Kind {
+        let name = self.name();
+        kinds::REGISTRY
+            .iter()
+            .copied()
+            .find(|k| k.name == name)
+            .unwrap_or(kinds::REGISTRY[0])
+    }
+
+    fn of(kind: &Kind) -> Option<Self> {
+        [
+            BodyKind::Point,
+            BodyKind::Sphere,
+            BodyKind::Spheroid,
+            BodyKind::Ellipsoid,
+            BodyKind::Disk,
+        ]
+        .into_iter()
+        .find(|k| k.name() == kind.name)
     }
 }
 
@@ -151,7 +222,222 @@ pub enum Amount {
     Density(f64),
 }
 
-/// A parsed (not yet validated) body spec.
+/// A parsed (not yet built) body spec of any registered kind.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spec {
+    /// The kind.
+    pub kind: &'static Kind,
+    /// Its values, in the kind's key order.
+    pub values: Values,
+    /// Mass or density.
+    pub amount: Amount,
+}
+
+impl Spec {
+    /// Builds the validated body with gravitational constant `g`.
+    ///
+    /// # Errors
+    /// The constructor's refusal, or an unreadable or invalid mesh.
+    pub fn build(&self, g: f64) -> Result<BuiltBody, SpecError> {
+        (self.kind.build)(self, g)
+    }
+
+    /// The error for a density given to a kind without a volume.
+    pub fn density_refused(&self) -> SpecError {
+        SpecError::UnknownKey {
+            kind: self.kind.name,
+            key: "density".into(),
+            expected: self.kind.cli_keys_text(),
+        }
+    }
+
+    /// Semi-axes along the body axes for drawing an outline (`None`: a point or a mesh).
+    pub fn semi_axes(&self) -> Option<[Real; 3]> {
+        (self.kind.semi_axes)(self)
+    }
+
+    /// The closed-form view, for the five kinds that have one.
+    pub fn closed_form(&self) -> Option<BodySpec> {
+        Some(BodySpec {
+            kind: BodyKind::of(self.kind)?,
+            dimensions: self.values.lengths(),
+            amount: self.amount,
+        })
+    }
+}
+
+impl From<&BodySpec> for Spec {
+    fn from(spec: &BodySpec) -> Self {
+        let kind = spec.kind.kind();
+        let mut values = Vec::new();
+        let mut d = spec.dimensions.iter().copied();
+        for key in kind.keys {
+            let mut next = || d.next().unwrap_or(f64::NAN);
+            let value = match key.value {
+                ValueKind::Lengths => Given::Numbers(key.cli.iter().map(|_| next()).collect()),
+                _ => Given::Number(next()),
+            };
+            values.push((key.scene, value));
+        }
+        Spec {
+            kind,
+            values: Values(values),
+            amount: spec.amount,
+        }
+    }
+}
+
+impl FromStr for Spec {
+    type Err = SpecError;
+
+    fn from_str(spec: &str) -> Result<Self, SpecError> {
+        let (name, rest) = spec.split_once(':').ok_or_else(|| SpecError::MissingKind {
+            spec: spec.to_string(),
+        })?;
+        let kind = kinds::find(name.trim()).ok_or_else(|| SpecError::UnknownKind {
+            kind: name.trim().to_string(),
+        })?;
+        let numeric = |key: &str| {
+            key == "mass"
+                || key == "density"
+                || kind.keys.iter().any(|k| {
+                    matches!(k.value, ValueKind::Length | ValueKind::Lengths)
+                        && k.cli.contains(&key)
+                })
+        };
+        let mut numbers: BTreeMap<String, f64> = BTreeMap::new();
+        let mut texts: BTreeMap<String, String> = BTreeMap::new();
+        for item in rest.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+            let (key, value) = item.split_once('=').ok_or_else(|| SpecError::NotKeyValue {
+                item: item.to_string(),
+            })?;
+            let key = key.trim();
+            let known = kind.keys.iter().any(|k| k.cli.contains(&key))
+                || key == "mass"
+                || (kind.solid && key == "density");
+            if !known {
+                return Err(SpecError::UnknownKey {
+                    kind: kind.name,
+                    key: key.to_string(),
+                    expected: kind.cli_keys_text(),
+                });
+            }
+            let duplicate = if numeric(key) {
+                let number: f64 = value.trim().parse().map_err(|_| SpecError::NotANumber {
+                    key: key.to_string(),
+                    value: value.to_string(),
+                })?;
+                numbers.insert(key.to_string(), number).is_some()
+            } else {
+                texts
+                    .insert(key.to_string(), value.trim().to_string())
+                    .is_some()
+            };
+            if duplicate {
+                return Err(SpecError::DuplicateKey {
+                    key: key.to_string(),
+                });
+            }
+        }
+        let mut values = Vec::new();
+        for key in kind.keys {
+            let missing = |cli: &'static str| SpecError::MissingKey {
+                kind: kind.name,
+                key: cli,
+            };
+            let cli = key.cli[0];
+            let value = match key.value {
+                ValueKind::Length => numbers.get(cli).map(|&x| Given::Number(x)),
+                ValueKind::Lengths => {
+                    let mut xs = Vec::new();
+                    for &c in key.cli {
+                        xs.push(*numbers.get(c).ok_or_else(|| missing(c))?);
+                    }
+                    Some(Given::Numbers(xs))
+                }
+                ValueKind::Path => texts.get(cli).map(|t| Given::Text(t.clone())),
+                ValueKind::Unit => match texts.get(cli).map(String::as_str) {
+                    None => None,
+                    Some(u @ ("m" | "km")) => Some(Given::Text(u.to_string())),
+                    Some(other) => {
+                        return Err(SpecError::BadValue {
+                            key: cli.to_string(),
+                            value: other.to_string(),
+                            expected: "m or km",
+                        })
+                    }
+                },
+                ValueKind::Flag => match texts.get(cli).map(String::as_str) {
+                    None => None,
+                    Some("true") => Some(Given::Flag(true)),
+                    Some("false") => Some(Given::Flag(false)),
+                    Some(other) => {
+                        return Err(SpecError::BadValue {
+                            key: cli.to_string(),
+                            value: other.to_string(),
+                            expected: "true or false",
+                        })
+                    }
+                },
+            };
+            match value {
+                Some(v) => values.push((key.scene, v)),
+                None if key.required => return Err(missing(cli)),
+                None => {}
+            }
+        }
+        let amount = match (numbers.get("mass"), numbers.get("density")) {
+            (Some(_), Some(_)) => return Err(SpecError::MassAndDensity { kind: kind.name }),
+            (Some(&m), None) => Amount::Mass(m),
+            (None, Some(&d)) => Amount::Density(d),
+            (None, None) => {
+                return Err(SpecError::MissingKey {
+                    kind: kind.name,
+                    key: "mass",
+                })
+            }
+        };
+        let values = Values(values);
+        (kind.check)(&values).map_err(|e| SpecError::Invalid {
+            kind: kind.name,
+            key: kind.key(e.key).map_or(e.key, |k| k.cli[0]),
+            message: e.message,
+        })?;
+        Ok(Spec {
+            kind,
+            values,
+            amount,
+        })
+    }
+}
+
+impl fmt::Display for Spec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:", self.kind.name)?;
+        for (scene, value) in &self.values.0 {
+            let Some(key) = self.kind.key(scene) else {
+                continue;
+            };
+            match value {
+                Given::Number(x) => write!(f, "{}={x},", key.cli[0])?,
+                Given::Numbers(xs) => {
+                    for (c, x) in key.cli.iter().zip(xs) {
+                        write!(f, "{c}={x},")?;
+                    }
+                }
+                Given::Text(t) => write!(f, "{}={t},", key.cli[0])?,
+                Given::Flag(b) => write!(f, "{}={b},", key.cli[0])?,
+            }
+        }
+        match self.amount {
+            Amount::Mass(m) => write!(f, "mass={m}"),
+            Amount::Density(d) => write!(f, "density={d}"),
+        }
+    }
+}
+
+/// A parsed (not yet validated) spec of a closed-form kind (the Python bindings' view; every
+/// kind, meshes included, is a [`Spec`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodySpec {
     /// The body kind.
@@ -166,91 +452,31 @@ impl FromStr for BodySpec {
     type Err = SpecError;
 
     fn from_str(spec: &str) -> Result<Self, SpecError> {
-        let (kind, rest) = spec.split_once(':').ok_or_else(|| SpecError::MissingKind {
-            spec: spec.to_string(),
-        })?;
-        let kind = match kind.trim() {
-            "point" => BodyKind::Point,
-            "sphere" => BodyKind::Sphere,
-            "spheroid" => BodyKind::Spheroid,
-            "ellipsoid" => BodyKind::Ellipsoid,
-            "disk" => BodyKind::Disk,
-            other => {
-                return Err(SpecError::UnknownKind {
-                    kind: other.to_string(),
-                })
-            }
-        };
-        let (geometric, density_allowed, expected) = kind.keys();
-        let mut values = BTreeMap::new();
-        for item in rest.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-            let (key, value) = item.split_once('=').ok_or_else(|| SpecError::NotKeyValue {
-                item: item.to_string(),
-            })?;
-            let key = key.trim();
-            let known =
-                geometric.contains(&key) || key == "mass" || (density_allowed && key == "density");
-            if !known {
-                return Err(SpecError::UnknownKey {
-                    kind: kind.name(),
-                    key: key.to_string(),
-                    expected,
-                });
-            }
-            let number: f64 = value.trim().parse().map_err(|_| SpecError::NotANumber {
-                key: key.to_string(),
-                value: value.to_string(),
-            })?;
-            if values.insert(key.to_string(), number).is_some() {
-                return Err(SpecError::DuplicateKey {
-                    key: key.to_string(),
-                });
-            }
-        }
-        let dimensions = geometric
-            .iter()
-            .map(|&key| {
-                values.get(key).copied().ok_or(SpecError::MissingKey {
-                    kind: kind.name(),
-                    key,
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let amount = match (values.get("mass"), values.get("density")) {
-            (Some(_), Some(_)) => return Err(SpecError::MassAndDensity { kind: kind.name() }),
-            (Some(&m), None) => Amount::Mass(m),
-            (None, Some(&d)) => Amount::Density(d),
-            (None, None) => {
-                return Err(SpecError::MissingKey {
-                    kind: kind.name(),
-                    key: "mass",
-                })
-            }
-        };
-        Ok(BodySpec {
-            kind,
-            dimensions,
-            amount,
+        let spec: Spec = spec.parse()?;
+        spec.closed_form().ok_or(SpecError::NotClosedForm {
+            kind: spec.kind.name,
         })
     }
 }
 
 impl fmt::Display for BodySpec {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let (keys, _, _) = self.kind.keys();
-        write!(f, "{}:", self.kind.name())?;
-        for (k, v) in keys.iter().zip(&self.dimensions) {
-            write!(f, "{k}={v},")?;
-        }
-        match self.amount {
-            Amount::Mass(m) => write!(f, "mass={m}"),
-            Amount::Density(d) => write!(f, "density={d}"),
-        }
+        Spec::from(self).fmt(f)
+    }
+}
+
+impl BodySpec {
+    /// Builds the validated body with gravitational constant `g`.
+    ///
+    /// # Errors
+    /// The constructor's refusal of the values.
+    pub fn build(&self, g: f64) -> Result<BuiltBody, SpecError> {
+        Spec::from(self).build(g)
     }
 }
 
 /// A validated body of any kind.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone)]
 pub enum BuiltBody {
     /// A point mass.
     Point(PointMass),
@@ -262,89 +488,70 @@ pub enum BuiltBody {
     Ellipsoid(Ellipsoid),
     /// A uniform thin disk.
     Disk(UniformDisk),
+    /// A homogeneous polyhedron (shared: a mesh is large).
+    Polyhedron(Arc<PolyhedronBody>),
+}
+
+impl PartialEq for BuiltBody {
+    fn eq(&self, other: &Self) -> bool {
+        match (self, other) {
+            (BuiltBody::Point(a), BuiltBody::Point(b)) => a == b,
+            (BuiltBody::Sphere(a), BuiltBody::Sphere(b)) => a == b,
+            (BuiltBody::Spheroid(a), BuiltBody::Spheroid(b)) => a == b,
+            (BuiltBody::Ellipsoid(a), BuiltBody::Ellipsoid(b)) => a == b,
+            (BuiltBody::Disk(a), BuiltBody::Disk(b)) => a == b,
+            (BuiltBody::Polyhedron(a), BuiltBody::Polyhedron(b)) => Arc::ptr_eq(a, b) || a == b,
+            _ => false,
+        }
+    }
 }
 
 impl BuiltBody {
-    /// The body as a potential.
-    pub fn into_potential(self) -> Box<dyn Potential> {
+    /// The body's field.
+    pub fn potential(&self) -> &dyn Potential {
         match self {
-            BuiltBody::Point(b) => Box::new(b),
-            BuiltBody::Sphere(b) => Box::new(b),
-            BuiltBody::Spheroid(b) => Box::new(b),
-            BuiltBody::Ellipsoid(b) => Box::new(b),
-            BuiltBody::Disk(b) => Box::new(b),
+            BuiltBody::Point(b) => b,
+            BuiltBody::Sphere(b) => b,
+            BuiltBody::Spheroid(b) => b,
+            BuiltBody::Ellipsoid(b) => b,
+            BuiltBody::Disk(b) => b,
+            BuiltBody::Polyhedron(b) => &b.polyhedron,
+        }
+    }
+
+    /// The body as an owned potential.
+    pub fn into_potential(&self) -> Box<dyn Potential> {
+        match self {
+            BuiltBody::Point(b) => Box::new(*b),
+            BuiltBody::Sphere(b) => Box::new(*b),
+            BuiltBody::Spheroid(b) => Box::new(*b),
+            BuiltBody::Ellipsoid(b) => Box::new(*b),
+            BuiltBody::Disk(b) => Box::new(*b),
+            BuiltBody::Polyhedron(b) => Box::new(b.polyhedron.clone()),
         }
     }
 
     /// The body with its integration geometry, for the interaction engine.
-    pub fn into_interaction_body(self) -> Result<Body, InteractionError> {
+    ///
+    /// # Errors
+    /// The engine's refusal of the body.
+    pub fn into_interaction_body(&self) -> Result<Body, InteractionError> {
         match self {
-            BuiltBody::Point(b) => Ok(Body::point_mass(b)),
-            BuiltBody::Sphere(b) => Body::sphere(b),
-            BuiltBody::Spheroid(b) => Body::spheroid(b),
-            BuiltBody::Ellipsoid(b) => Body::ellipsoid(b),
-            BuiltBody::Disk(b) => Body::disk(b),
+            BuiltBody::Point(b) => Ok(Body::point_mass(*b)),
+            BuiltBody::Sphere(b) => Body::sphere(*b),
+            BuiltBody::Spheroid(b) => Body::spheroid(*b),
+            BuiltBody::Ellipsoid(b) => Body::ellipsoid(*b),
+            BuiltBody::Disk(b) => Body::disk(*b),
+            BuiltBody::Polyhedron(b) => Body::polyhedron(b.polyhedron.clone()),
         }
     }
-}
 
-impl BodySpec {
-    /// Builds the validated body with gravitational constant `g`.
-    pub fn build(&self, g: f64) -> Result<BuiltBody, SpecError> {
-        let kind = self.kind.name();
-        let wrap = |source| SpecError::Body { kind, source };
-        let d = &self.dimensions;
-        let body = match (self.kind, self.amount) {
-            (BodyKind::Point, Amount::Mass(m)) => BuiltBody::Point(
-                PointMass::new(m)
-                    .and_then(|b| b.with_gravitational_constant(g))
-                    .map_err(wrap)?,
-            ),
-            (BodyKind::Sphere, Amount::Mass(m)) => BuiltBody::Sphere(
-                Sphere::new(d[0], m)
-                    .and_then(|b| b.with_gravitational_constant(g))
-                    .map_err(wrap)?,
-            ),
-            (BodyKind::Sphere, Amount::Density(rho)) => BuiltBody::Sphere(
-                Sphere::with_density(d[0], rho)
-                    .and_then(|b| b.with_gravitational_constant(g))
-                    .map_err(wrap)?,
-            ),
-            (BodyKind::Spheroid, Amount::Mass(m)) => BuiltBody::Spheroid(
-                Spheroid::new(d[0], d[1], m)
-                    .and_then(|b| b.with_gravitational_constant(g))
-                    .map_err(wrap)?,
-            ),
-            (BodyKind::Spheroid, Amount::Density(rho)) => BuiltBody::Spheroid(
-                Spheroid::with_density(d[0], d[1], rho)
-                    .and_then(|b| b.with_gravitational_constant(g))
-                    .map_err(wrap)?,
-            ),
-            (BodyKind::Ellipsoid, Amount::Mass(m)) => BuiltBody::Ellipsoid(
-                Ellipsoid::new(d[0], d[1], d[2], m)
-                    .and_then(|b| b.with_gravitational_constant(g))
-                    .map_err(wrap)?,
-            ),
-            (BodyKind::Ellipsoid, Amount::Density(rho)) => BuiltBody::Ellipsoid(
-                Ellipsoid::with_density(d[0], d[1], d[2], rho)
-                    .and_then(|b| b.with_gravitational_constant(g))
-                    .map_err(wrap)?,
-            ),
-            (BodyKind::Disk, Amount::Mass(m)) => BuiltBody::Disk(
-                UniformDisk::new(d[0], m)
-                    .and_then(|b| b.with_gravitational_constant(g))
-                    .map_err(wrap)?,
-            ),
-            // The parser accepts density only for solids.
-            (BodyKind::Point | BodyKind::Disk, Amount::Density(_)) => {
-                return Err(SpecError::UnknownKey {
-                    kind,
-                    key: "density".into(),
-                    expected: self.kind.keys().2,
-                })
-            }
-        };
-        Ok(body)
+    /// What was done to read the body, for the user (a mesh's frame), if anything.
+    pub fn note(&self) -> Option<String> {
+        match self {
+            BuiltBody::Polyhedron(b) => Some(b.note()),
+            _ => None,
+        }
     }
 }
 
