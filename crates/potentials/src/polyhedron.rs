@@ -46,6 +46,7 @@
 //! - **Mass properties** by signed tetrahedra about a point near the body (the mean vertex),
 //!   the second moments about the centroid itself (no parallel-axis cancellation).
 
+mod local;
 mod mesh;
 pub(crate) mod multipole;
 mod reach;
@@ -60,6 +61,7 @@ use rayon::prelude::*;
 use crate::error::{positive, representable, BodyError};
 use crate::{Field, Potential, Real, Region, Vec3};
 
+pub use local::{LocalExpansion, LOCAL_MAX_DEGREE};
 pub use mesh::{LengthUnit, Mesh};
 pub use reach::{REACH_DEGREE, REACH_RADII};
 pub use validate::MeshError;

@@ -65,7 +65,11 @@ fn run(name: &str, a: &Body, b: &Body, pose_b: &Pose) {
             }
         };
         let first = first.elapsed();
-        let repeats = 10;
+        // Enough repeats for 0.5 s of work: the CPU clock ticks every 10 ms.
+        let t = Instant::now();
+        engine.interact(a, &pose_a, b, pose_b).unwrap();
+        let once = t.elapsed().as_secs_f64();
+        let repeats = ((0.5 / once.max(1e-6)).ceil() as u32).clamp(10, 2000);
         let t = Instant::now();
         let cpu = cpu_seconds();
         for _ in 0..repeats {
@@ -85,7 +89,7 @@ fn run(name: &str, a: &Body, b: &Body, pose_b: &Pose) {
         .unwrap();
         let across = other.interact(a, &pose_a, b, pose_b);
         println!(
-            "{name} {surface:?}: over {:?} ({}), {:.2} ms wall, {:.2} ms CPU per evaluation (first {:.1} ms wall), {} evaluations, level {:?}, estimate {:.2e}",
+            "{name} {surface:?}: over {:?} ({}), {:.2} ms wall, {:.2} ms CPU per evaluation ({repeats} repeats; first {:.1} ms wall), {} evaluations, level {:?}, estimate {:.2e}",
             r.integrated_over,
             r.method,
             per.as_secs_f64() * 1e3,

@@ -29,7 +29,7 @@ pub const REACH_DEGREE: usize = 60;
 pub const REACH_RADII: Real = 2.0;
 
 impl Polyhedron {
-    fn reach_multipole(&self) -> &Multipole {
+    pub(super) fn reach_multipole(&self) -> &Multipole {
         self.reach.get_or_init(|| {
             Multipole::new(
                 &self.vertices,

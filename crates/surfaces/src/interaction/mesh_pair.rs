@@ -73,6 +73,7 @@ use crate::{CompensatedSum, CompensatedSum3, Real, Vec3};
 use nalgebra::Matrix3;
 use rayon::prelude::*;
 use std::sync::Arc;
+use surfgrav_potentials::polyhedron::LocalExpansion;
 use surfgrav_potentials::{Field, InertiaTensor, Polyhedron, Pose, Potential, Region};
 
 /// The ladder over a mesh: (rule order $n$, subdivision threshold θ).
@@ -105,6 +106,14 @@ const TRUNCATION_SHARE: Real = 0.05;
 const NS_PER_FACE: Real = 50.0;
 const NS_PER_HARMONIC: Real = 6.8;
 const NS_PER_MESH_NODE: Real = 250.0;
+/// The local expansion ([`LocalExpansion`]): per term $(n, m)$, $m \le n \le N$, of an
+/// evaluation, and per term pair of its construction ($(N+1)(N+2)/2$ times $(P+1)^2$).
+const NS_PER_LOCAL_TERM: Real = 5.0;
+const NS_PER_TRANSLATION_TERM: Real = 3.0;
+
+/// Relative margin on the ball of a local expansion over the partner's bounding radius (the
+/// nodes, mapped between frames, carry rounding).
+const BALL_MARGIN: Real = 1e-9;
 
 /// Whether the contact of two bodies could be decided.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -185,28 +194,49 @@ struct Plan {
 fn plan(x: &Body, px: &Pose, y: &Body, py: &Pose, tol: Real) -> Option<Plan> {
     let d = (px.position - py.position).norm();
     let min_distance = (d - x.bounding_radius()).max(0.0);
-    let mut field_cost = field_cost(y, min_distance, truncation_bound(x, y, d, tol));
+    let bound = truncation_bound(x, y, d, tol);
+    let field_cost = field_cost(y, min_distance, bound);
     let nodes = match x.shape() {
         BodyShape::Mesh(mesh) => {
             let geometry = Geometry::new(mesh, px, y, py);
             let start = geometry.start_level(tol);
             let next = (start + 1).min(LEVELS.len() - 1);
-            field_cost += NS_PER_MESH_NODE;
             (geometry.nodes(start) + geometry.nodes(next)) as Real
         }
         BodyShape::Solid(_) | BodyShape::Disk(_) | BodyShape::Surface(_) => {
-            // The engine's ladder at a gap of g sizes: calibrated on the Didymos pair (g = 6.2,
-            // 1e-10: 200 evaluations); more digits and smaller gaps cost more.
-            let size = x.bounding_radius();
-            let gap = ((d - size - singular_radius(y)) / size).max(1e-3);
-            let digits = (-tol.log10()).max(1.0) / 10.0;
-            150.0 * digits * digits * (1.0 + 3.0 / gap)
+            partner_nodes(x, y, d, tol)
         }
         BodyShape::Point | BodyShape::FieldOnly => return None,
     };
+    let node_cost = match x.shape() {
+        BodyShape::Mesh(_) => NS_PER_MESH_NODE,
+        _ => 0.0,
+    };
+    let local = y
+        .as_polyhedron()
+        .and_then(|p| local_cost(p, d, x.bounding_radius(), bound, nodes));
+    let field = local.map_or(field_cost, |l| l.min(field_cost));
     Some(Plan {
-        cost: nodes * field_cost,
+        cost: nodes * (field + node_cost),
     })
+}
+
+/// Predicted ns per node of a polyhedron's local expansion over a ball of `radius` at `d`
+/// from its centroid, its construction shared by `nodes`; `None` where it is not offered.
+fn local_cost(p: &Polyhedron, d: Real, radius: Real, bound: Real, nodes: Real) -> Option<Real> {
+    let (n, s) = p.local_expansion_degrees(d, radius * (1.0 + BALL_MARGIN), bound)?;
+    let terms = ((n + 1) * (n + 2) / 2) as Real;
+    let build = NS_PER_TRANSLATION_TERM * terms * ((s + 1) * (s + 1)) as Real;
+    Some(NS_PER_LOCAL_TERM * terms + build / nodes.max(1.0))
+}
+
+/// The engine's ladder over a solid, disk or surface X at a gap of g sizes: calibrated on the
+/// Didymos pair (g = 6.2, 1e-10: 200 evaluations); more digits and smaller gaps cost more.
+fn partner_nodes(x: &Body, y: &Body, d: Real, tol: Real) -> Real {
+    let size = x.bounding_radius();
+    let gap = ((d - size - singular_radius(y)) / size).max(1e-3);
+    let digits = (-tol.log10()).max(1.0) / 10.0;
+    150.0 * digits * digits * (1.0 + 3.0 / gap)
 }
 
 /// Predicted ns per evaluation of `y`'s field at `distance` from its centroid.
@@ -401,7 +431,7 @@ fn over_mesh(
     // X frame → Y frame: y = q x + t.
     let q = rot_y.transpose() * rot_x;
     let t = rot_y.transpose() * (px.position - py.position);
-    let source = Source::new(y, bound);
+    let source = Source::new(y, bound, &t, mesh.bounding_radius(), &geometry, tol);
     let density = x.density();
     let fixed = match options.method {
         MethodChoice::FixedLevel(l) => Some((l as usize).min(LEVELS.len() - 1)),
@@ -450,18 +480,40 @@ fn over_mesh(
     }
 }
 
-/// A source field: a polyhedron by its expansion where that meets the bound, or any potential.
+/// A source field: a polyhedron by its local expansion over the integrated body's ball or its
+/// exterior expansion where either meets the bound (whichever is predicted cheaper), or any
+/// potential.
 struct Source<'y> {
     potential: &'y dyn Potential,
     polyhedron: Option<&'y Polyhedron>,
+    local: Option<LocalExpansion>,
     bound: Real,
 }
 
 impl<'y> Source<'y> {
-    fn new(y: &'y Body, bound: Real) -> Self {
+    /// `centre` and `radius`: the integrated body's ball in Y's frame (every node within).
+    fn new(
+        y: &'y Body,
+        bound: Real,
+        centre: &Vec3,
+        radius: Real,
+        geometry: &Geometry,
+        tol: Real,
+    ) -> Self {
+        let polyhedron = y.as_polyhedron();
+        let local = polyhedron.and_then(|p| {
+            let d = (centre - p.centroid()).norm();
+            let start = geometry.start_level(tol);
+            let next = (start + 1).min(LEVELS.len() - 1);
+            let nodes = (geometry.nodes(start) + geometry.nodes(next)) as Real;
+            local_cost(p, d, radius, bound, nodes)
+                .filter(|&cost| cost < field_cost(y, (d - radius).max(0.0), bound))
+                .and_then(|_| p.local_expansion(centre, radius * (1.0 + BALL_MARGIN), bound))
+        });
         Self {
             potential: y.potential(),
-            polyhedron: y.as_polyhedron(),
+            polyhedron,
+            local,
             bound,
         }
     }
@@ -469,6 +521,11 @@ impl<'y> Source<'y> {
     /// The field at a source-frame point and the relative truncation bound it carries.
     #[inline]
     fn field(&self, p: &Vec3) -> (Field, Real) {
+        if let Some(local) = &self.local {
+            if local.contains(p) {
+                return (local.field(p), local.relative_bound());
+            }
+        }
         if let Some(poly) = self.polyhedron {
             if let Some((f, _)) = poly.field_expansion(p, self.bound) {
                 return (f, self.bound);
@@ -686,6 +743,8 @@ fn relative_change(a: &Interaction, b: &Interaction, force_only: bool) -> Real {
 struct ExpansionField {
     polyhedron: Arc<Polyhedron>,
     bound: Real,
+    /// The local expansion over the partner's ball, where predicted cheaper.
+    local: Option<LocalExpansion>,
 }
 
 impl Potential for ExpansionField {
@@ -710,6 +769,11 @@ impl Potential for ExpansionField {
         }
     }
     fn field(&self, r: &Vec3) -> Field {
+        if let Some(local) = &self.local {
+            if local.contains(r) {
+                return local.field(r);
+            }
+        }
         match self.polyhedron.field_expansion(r, self.bound) {
             Some((f, _)) => f,
             None => self.polyhedron.field(r),
@@ -738,10 +802,23 @@ fn over_partner(
     let poly: &Polyhedron = &shared;
     let d = (px.position - py.position).norm();
     let bound = truncation_bound(x, y, d, tol);
+    let radius = x.bounding_radius();
+    let centre = py.to_body(&px.position);
+    let nodes = partner_nodes(x, y, d, tol);
+    let local = local_cost(
+        poly,
+        (centre - poly.centroid()).norm(),
+        radius,
+        bound,
+        nodes,
+    )
+    .filter(|&cost| cost < field_cost(y, (d - radius).max(0.0), bound))
+    .and_then(|_| poly.local_expansion(&centre, radius * (1.0 + BALL_MARGIN), bound));
     let field = Body::custom(
         Arc::new(ExpansionField {
             polyhedron: shared.clone(),
             bound,
+            local,
         }),
         BodyShape::FieldOnly,
     )?;
