@@ -72,9 +72,9 @@
 //! Volume $\tfrac43\pi abc$; surface area $4\pi abc\\, R_G(a^{-2}, b^{-2}, c^{-2})$ with Carlson's
 //! $R_G$ (DLMF 19.33.1), which reduces to the textbook spheroid formulas.
 
-use crate::carlson;
 use crate::{Interval, ParameterDomain, Periodicity, Real, ShapeError, Surface, Vec3};
 use std::f64::consts::PI;
+use surfgrav_potentials::carlson;
 
 /// A homogeneous ellipsoid's shape: semi-axes along the body axes x, y, z. Units: length.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -127,10 +127,10 @@ impl EllipsoidSurface {
         representable("semi-axis ratio", b_over_c)?;
         representable("product of semi-axis ratios", a_over_c * b_over_c)?;
         let volume = representable("volume", 4.0 / 3.0 * PI * a * b * c)?;
-        let surface_area = representable(
-            "surface area",
-            4.0 * PI * a * b * c * carlson::rg(1.0 / (a * a), 1.0 / (b * b), 1.0 / (c * c)),
-        )?;
+        // The inverse squared semi-axes are positive and finite (checked above), so R_G exists;
+        // were it ever refused, the NaN is reported as an unrepresentable surface area.
+        let rg = carlson::rg(1.0 / (a * a), 1.0 / (b * b), 1.0 / (c * c)).unwrap_or(Real::NAN);
+        let surface_area = representable("surface area", 4.0 * PI * a * b * c * rg)?;
         Ok(Self {
             semi_axes: [a, b, c],
             volume,

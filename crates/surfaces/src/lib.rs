@@ -61,7 +61,6 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-mod carlson;
 mod error;
 
 pub mod ellipsoid;
