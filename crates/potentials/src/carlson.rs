@@ -149,7 +149,7 @@ pub fn symmetric_integrals(x: f64, y: f64, z: f64) -> Option<SymmetricIntegrals>
 
 /// $R_G(x, y, z) = \tfrac{1}{4\pi}\int\_{S^2} \sqrt{x n_1^2 + y n_2^2 + z n_3^2}\\,\mathrm d\Omega$
 /// (DLMF 19.16.3): the surface area of the ellipsoid with semi-axes $a, b, c$ is
-/// $4\pi abc\,R_G(a^{-2}, b^{-2}, c^{-2})$ (DLMF 19.33.1).
+/// $4\pi abc\\,R_G(a^{-2}, b^{-2}, c^{-2})$ (DLMF 19.33.1).
 ///
 /// By DLMF 19.21.10, $2R_G = zR_F - \tfrac13(x - z)(y - z)R_D(x, y, z) + \sqrt{xy/z}$, with the
 /// middle argument in the role of $z$ so that $(x - z)(y - z) \le 0$ and no term cancels;
