@@ -21,7 +21,7 @@ use crate::output;
 use crate::presets;
 use crate::scene::{IntegratorName, Scene, SceneFile};
 use crate::simulate::{self, RunError, RunRecord};
-use crate::spec::{parse_positive, parse_vector, BodySpec};
+use crate::spec::{parse_positive, parse_vector, Spec};
 
 /// Exact gravitational interaction of extended rigid bodies.
 #[derive(Debug, Parser)]
@@ -368,7 +368,7 @@ fn interact_batch(path: &str) -> Result<String, UserError> {
                 bodies.entry((spec.clone(), g.to_bits()))
             {
                 let body = spec
-                    .parse::<BodySpec>()
+                    .parse::<Spec>()
                     .and_then(|s| s.build(g))
                     .map_err(|e| at(format!("{key}: {e}")))?
                     .into_interaction_body()
@@ -446,8 +446,8 @@ fn field_commands(command: Command) -> Result<String, UserError> {
     match command {
         Command::Potential { body, at, g } => {
             let g = parse_positive("--g", &g).map_err(UserError)?;
-            let spec: BodySpec = body.parse()?;
-            let is_disk = spec.kind == crate::spec::BodyKind::Disk;
+            let spec: Spec = body.parse()?;
+            let is_disk = spec.kind.name == "disk";
             let body = spec.build(g)?.into_potential();
             let r = parse_vector("--at", &at)?;
             let field = body.field(&r);
@@ -494,13 +494,13 @@ fn field_commands(command: Command) -> Result<String, UserError> {
             let g = parse_positive("--g", &g).map_err(UserError)?;
             let tolerance = parse_positive("--tolerance", &tolerance).map_err(UserError)?;
             let a = body_a
-                .parse::<BodySpec>()
+                .parse::<Spec>()
                 .and_then(|s| s.build(g))
                 .map_err(|e| UserError(format!("--a: {e}")))?
                 .into_interaction_body()
                 .map_err(|e| UserError(format!("--a: {e}")))?;
             let b = body_b
-                .parse::<BodySpec>()
+                .parse::<Spec>()
                 .and_then(|s| s.build(g))
                 .map_err(|e| UserError(format!("--b: {e}")))?
                 .into_interaction_body()
@@ -698,6 +698,12 @@ fn run_command(
     quiet: bool,
 ) -> Result<String, CliError> {
     let scene = load_scene(which, overrides)?;
+    // What was done to read a mesh (its size, its frame): one line per body.
+    if !quiet {
+        for note in &scene.notes {
+            eprintln!("{note}");
+        }
+    }
     scene.integrator.make().map_err(CliError::Input)?;
     // The output folder is checked and created (hidden, under a temporary name) before the
     // computation, so a bad --out costs nothing and the trajectory can be streamed into it.
