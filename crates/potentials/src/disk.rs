@@ -91,6 +91,7 @@ use std::sync::OnceLock;
 use crate::elliptic::gauss;
 use crate::error::{positive, representable};
 use crate::{BodyError, Field, Potential, Real, Region, Vec3};
+use surfgrav_quadrature::two_sum;
 
 /// From this distance (in disk radii) on, the exterior Legendre series replaces the closed form
 /// (measured: the closed form's error grows as ~(r/R)² ε and reaches 4e-15 at r = 2R; the
@@ -424,14 +425,6 @@ fn ratio_to_f64(numerator: u128, denominator: u128) -> Real {
 fn two_product(a: Real, b: Real) -> (Real, Real) {
     let p = a * b;
     (p, a.mul_add(b, -p))
-}
-
-/// `a + b = s + e` exactly (Knuth).
-#[inline]
-fn two_sum(a: Real, b: Real) -> (Real, Real) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
 }
 
 #[cfg(test)]

@@ -65,3 +65,4 @@ pub use periodic_trapezoid::PeriodicTrapezoid;
 pub use rule::{Interval, Rule1D};
 pub use sum::CompensatedSum;
 pub use tensor::{Rectangle, TensorNode, TensorProductRule};
+pub use twofold::two_sum;

@@ -1,7 +1,7 @@
 //! Error-free transformations and a minimal double-double ("two-fold") number.
 //!
-//! Used only while building rules, to evaluate recurrences and weight formulas to about twice
-//! the working precision. The products use Veltkamp's splitting (Dekker 1971), not a fused
+//! Used while building rules, to evaluate recurrences and weight formulas to about twice
+//! the working precision; [`two_sum`] is public (the potentials use it too). The products use Veltkamp's splitting (Dekker 1971), not a fused
 //! multiply-add, so the results are the same on every target and need no CPU feature.
 //!
 //! - `two_sum(a, b) = (s, e)` with $s = \mathrm{fl}(a + b)$ and $a + b = s + e$ exactly (Knuth).
@@ -19,9 +19,15 @@ pub(crate) fn split(a: f64) -> (f64, f64) {
     (high, a - high)
 }
 
-/// `(fl(a + b), a + b - fl(a + b))`, exact.
+/// Knuth's error-free sum: `(s, e)` with $s = \mathrm{fl}(a + b)$ and $a + b = s + e$ exactly
+/// (for finite `a + b`; six additions, no branch, any magnitudes). The workspace's one copy.
+///
+/// ```
+/// use surfgrav_quadrature::two_sum;
+/// assert_eq!(two_sum(1.0, 1e-20), (1.0, 1e-20));
+/// ```
 #[inline(always)]
-pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
+pub fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let sum = a + b;
     let b_virtual = sum - a;
     let a_virtual = sum - b_virtual;
