@@ -1289,16 +1289,45 @@ fn load_baseline(
     }
 }
 
-fn rerun_baseline(options: &BenchOptions, progress: &mut dyn FnMut(&str)) -> Result<Value, String> {
+/// Why the baseline script could not be re-run (the committed figures are used instead, and
+/// the report says why).
+#[derive(Debug, thiserror::Error)]
+enum RerunError {
+    #[error("{0} not found")]
+    ScriptMissing(&'static str),
+    #[error("{python} cannot be started: {source}")]
+    CannotStart {
+        python: String,
+        source: std::io::Error,
+    },
+    #[error("{0} has no scipy/numpy")]
+    NoScipy(String),
+    #[error("the script failed ({status}): {last_line}")]
+    ScriptFailed {
+        status: std::process::ExitStatus,
+        last_line: String,
+    },
+    #[error("its output is not JSON: {0}")]
+    NotJson(serde_json::Error),
+}
+
+fn rerun_baseline(
+    options: &BenchOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Value, RerunError> {
     if !Path::new(BASELINE_SCRIPT).exists() {
-        return Err(format!("{BASELINE_SCRIPT} not found"));
+        return Err(RerunError::ScriptMissing(BASELINE_SCRIPT));
     }
+    let cannot_start = |source| RerunError::CannotStart {
+        python: options.python.clone(),
+        source,
+    };
     let check = Command::new(&options.python)
         .args(["-c", "import scipy, numpy"])
         .output()
-        .map_err(|e| format!("{} cannot be started: {e}", options.python))?;
+        .map_err(cannot_start)?;
     if !check.status.success() {
-        return Err(format!("{} has no scipy/numpy", options.python));
+        return Err(RerunError::NoScipy(options.python.clone()));
     }
     let mut args = vec![BASELINE_SCRIPT, "--json"];
     if options.quick {
@@ -1314,13 +1343,15 @@ fn rerun_baseline(options: &BenchOptions, progress: &mut dyn FnMut(&str)) -> Res
     let output = Command::new(&options.python)
         .args(&args)
         .output()
-        .map_err(|e| format!("{} cannot be started: {e}", options.python))?;
+        .map_err(cannot_start)?;
     if !output.status.success() {
         let stderr = String::from_utf8_lossy(&output.stderr);
-        let last = stderr.lines().last().unwrap_or("").to_string();
-        return Err(format!("the script failed ({}): {last}", output.status));
+        return Err(RerunError::ScriptFailed {
+            status: output.status,
+            last_line: stderr.lines().last().unwrap_or("").to_string(),
+        });
     }
-    serde_json::from_slice(&output.stdout).map_err(|e| format!("its output is not JSON: {e}"))
+    serde_json::from_slice(&output.stdout).map_err(RerunError::NotJson)
 }
 
 /// The engine's default: azimuth–height ladder at 10⁻¹².

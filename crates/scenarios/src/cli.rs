@@ -707,11 +707,11 @@ fn run_command(
     scene.integrator.make().map_err(CliError::Input)?;
     // The output folder is checked and created (hidden, under a temporary name) before the
     // computation, so a bad --out costs nothing and the trajectory can be streamed into it.
-    let folder = output::choose_folder(out, &scene.name).map_err(CliError::Input)?;
-    let staging = output::Staging::new(&folder).map_err(CliError::Input)?;
+    let folder = output::choose_folder(out, &scene.name).map_err(|e| CliError::Input(e.into()))?;
+    let staging = output::Staging::new(&folder).map_err(|e| CliError::Input(e.into()))?;
     let prepared = simulate::prepare(&scene)?;
     let mut csv = output::TrajectoryWriter::create(&staging.path().join("trajectory.csv"))
-        .map_err(CliError::Failed)?;
+        .map_err(|e| CliError::Failed(e.into()))?;
     const TICKS: u64 = 1000;
     let bar = progress_bar(quiet, TICKS, &scene.name);
     let span = scene.t_end - scene.t_start;
@@ -726,16 +726,16 @@ fn run_command(
                 bar.set_position(tick);
             }
         },
-        &mut |row| csv.write(row),
+        &mut |row| Ok(csv.write(row)?),
     );
     bar.finish_and_clear();
     let record = record?;
-    csv.finish().map_err(CliError::Failed)?;
+    csv.finish().map_err(|e| CliError::Failed(e.into()))?;
     output::write_summary(&record, &staging.path().join("summary.json"))
-        .map_err(CliError::Failed)?;
+        .map_err(|e| CliError::Failed(e.into()))?;
     let figures = figures::write_all(&record, staging.path())
         .map_err(|e| CliError::Failed(format!("figures: {e}")))?;
-    let folder = staging.commit().map_err(CliError::Failed)?;
+    let folder = staging.commit().map_err(|e| CliError::Failed(e.into()))?;
     if quiet {
         return Ok(String::new());
     }
@@ -755,8 +755,8 @@ fn bench_command(
     python: String,
     quiet: bool,
 ) -> Result<String, CliError> {
-    let folder = output::choose_folder(out, "bench").map_err(CliError::Input)?;
-    let staging = output::Staging::new(&folder).map_err(CliError::Failed)?;
+    let folder = output::choose_folder(out, "bench").map_err(|e| CliError::Input(e.into()))?;
+    let staging = output::Staging::new(&folder).map_err(|e| CliError::Failed(e.into()))?;
     let mut options = crate::bench::BenchOptions::new(staging.path());
     if quick {
         options = options.quick();
@@ -775,7 +775,7 @@ fn bench_command(
     });
     bar.finish_and_clear();
     let report = report.map_err(|e| CliError::Failed(format!("bench: {e}")))?;
-    let folder = staging.commit().map_err(CliError::Failed)?;
+    let folder = staging.commit().map_err(|e| CliError::Failed(e.into()))?;
     if quiet {
         return Ok(String::new());
     }

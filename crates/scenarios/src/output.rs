@@ -352,6 +352,123 @@ fn round_up_to_1_2_5(x: Real) -> Real {
 pub const TRAJECTORY_HEADER: &str =
     "t,xa,ya,za,xb,yb,zb,vxa,vya,vza,vxb,vyb,vzb,separation,energy,angular_momentum,qwa,qxa,qya,qza,qwb,qxb,qyb,qzb,wxa,wya,wza,wxb,wyb,wzb,jx,jy,jz";
 
+/// Why a run's folder or files could not be written. The messages name the path and say what
+/// to change.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum OutputError {
+    /// Writing a file failed.
+    #[error("cannot write {}: {source}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The summary could not be serialised.
+    #[error(transparent)]
+    Summary(#[from] serde_json::Error),
+    /// `--out` was given as an empty path.
+    #[error("--out must not be empty")]
+    EmptyOut,
+    /// `--out` exists and is not an empty folder.
+    #[error(
+        "--out {} already exists and is not an empty folder: choose a new folder or remove it",
+        out.display()
+    )]
+    OutExists {
+        /// The path given.
+        out: PathBuf,
+    },
+    /// An ancestor of `--out` is a file.
+    #[error(
+        "--out {}: {} is a file, not a folder: choose an output path inside a folder",
+        out.display(),
+        ancestor.display()
+    )]
+    AncestorIsFile {
+        /// The path given.
+        out: PathBuf,
+        /// The ancestor that is a file.
+        ancestor: PathBuf,
+    },
+    /// The folder that would hold `--out` does not exist.
+    #[error(
+        "--out {}: the folder {} does not exist: create it first (mkdir -p {}) or choose another path",
+        out.display(),
+        parent.display(),
+        parent.display()
+    )]
+    OutParentMissing {
+        /// The path given.
+        out: PathBuf,
+        /// Its missing parent.
+        parent: PathBuf,
+    },
+    /// Without `--out`, the scene's name cannot name the default folder.
+    #[error(
+        "the scene name `{name}` cannot name the default output folder (letters, digits, \
+         -, _, . only, not starting with .): give --out DIR"
+    )]
+    UnsafeName {
+        /// The scene's name.
+        name: String,
+    },
+    /// The target path has no final component.
+    #[error("{} is not a folder name", target.display())]
+    NotAFolderName {
+        /// The target.
+        target: PathBuf,
+    },
+    /// The folder that would hold the target does not exist.
+    #[error("the parent folder {} does not exist: create it first", parent.display())]
+    ParentMissing {
+        /// The missing folder.
+        parent: PathBuf,
+    },
+    /// A stale temporary folder of this process could not be removed.
+    #[error("cannot clear {}: {source}", path.display())]
+    Clear {
+        /// The folder.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The temporary folder could not be created.
+    #[error("cannot create {}: {source}", path.display())]
+    Create {
+        /// The folder.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// An empty folder given as `--out` could not be replaced.
+    #[error("cannot replace {} (it must be empty): {source}", path.display())]
+    Replace {
+        /// The folder.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The finished folder could not be renamed to its final name.
+    #[error("cannot rename {} to {}: {source}", from.display(), to.display())]
+    Rename {
+        /// The temporary folder.
+        from: PathBuf,
+        /// The final name.
+        to: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+}
+
+/// For callers whose own errors are still text (the sweep's tasks, the run's row sink).
+impl From<OutputError> for String {
+    fn from(e: OutputError) -> Self {
+        e.to_string()
+    }
+}
+
 /// `trajectory.csv`, written row by row as the run goes (nothing is held in memory).
 pub struct TrajectoryWriter {
     writer: BufWriter<fs::File>,
@@ -363,8 +480,11 @@ impl TrajectoryWriter {
     ///
     /// # Errors
     /// I/O errors, with the path.
-    pub fn create(path: &Path) -> Result<Self, String> {
-        let fail = |e: std::io::Error| format!("cannot write {}: {e}", path.display());
+    pub fn create(path: &Path) -> Result<Self, OutputError> {
+        let fail = |source| OutputError::Write {
+            path: path.to_path_buf(),
+            source,
+        };
         let mut writer = BufWriter::new(fs::File::create(path).map_err(fail)?);
         writeln!(writer, "{TRAJECTORY_HEADER}").map_err(fail)?;
         Ok(Self {
@@ -377,7 +497,7 @@ impl TrajectoryWriter {
     ///
     /// # Errors
     /// I/O errors, with the path.
-    pub fn write(&mut self, row: &OutputRow) -> Result<(), String> {
+    pub fn write(&mut self, row: &OutputRow) -> Result<(), OutputError> {
         let (a, b) = (&row.state.body_a, &row.state.body_b);
         let mut line = String::with_capacity(320);
         let values = std::iter::once(row.time)
@@ -399,18 +519,21 @@ impl TrajectoryWriter {
             }
             let _ = write!(line, "{x}");
         }
-        writeln!(self.writer, "{line}")
-            .map_err(|e| format!("cannot write {}: {e}", self.path.display()))
+        writeln!(self.writer, "{line}").map_err(|source| OutputError::Write {
+            path: self.path.clone(),
+            source,
+        })
     }
 
     /// Flushes and closes the file.
     ///
     /// # Errors
     /// I/O errors, with the path.
-    pub fn finish(mut self) -> Result<(), String> {
-        self.writer
-            .flush()
-            .map_err(|e| format!("cannot write {}: {e}", self.path.display()))
+    pub fn finish(mut self) -> Result<(), OutputError> {
+        self.writer.flush().map_err(|source| OutputError::Write {
+            path: self.path.clone(),
+            source,
+        })
     }
 }
 
@@ -418,9 +541,12 @@ impl TrajectoryWriter {
 ///
 /// # Errors
 /// I/O errors, with the path.
-pub fn write_summary(run: &RunRecord, path: &Path) -> Result<(), String> {
-    let text = serde_json::to_string_pretty(&Summary::of(run)).map_err(|e| e.to_string())?;
-    fs::write(path, text + "\n").map_err(|e| format!("cannot write {}: {e}", path.display()))
+pub fn write_summary(run: &RunRecord, path: &Path) -> Result<(), OutputError> {
+    let text = serde_json::to_string_pretty(&Summary::of(run))?;
+    fs::write(path, text + "\n").map_err(|source| OutputError::Write {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Whether `name` can name a folder as it is: letters, digits, `-`, `_`, `.` (ASCII), not
@@ -435,7 +561,7 @@ pub fn folder_safe(name: &str) -> bool {
 
 /// The folder that must hold `out`: it must exist and be a folder. Says which ancestor is a
 /// file, or which folder is missing.
-fn check_parent(out: &Path) -> Result<(), String> {
+fn check_parent(out: &Path) -> Result<(), OutputError> {
     let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) else {
         return Ok(());
     };
@@ -451,21 +577,18 @@ fn check_parent(out: &Path) -> Result<(), String> {
                 break;
             }
             Ok(_) => {
-                return Err(format!(
-                    "--out {}: {} is a file, not a folder: choose an output path inside a folder",
-                    out.display(),
-                    ancestor.display()
-                ))
+                return Err(OutputError::AncestorIsFile {
+                    out: out.to_path_buf(),
+                    ancestor: ancestor.to_path_buf(),
+                })
             }
             Err(_) => continue,
         }
     }
-    Err(format!(
-        "--out {}: the folder {} does not exist: create it first (mkdir -p {}) or choose another path",
-        out.display(),
-        parent.display(),
-        parent.display()
-    ))
+    Err(OutputError::OutParentMissing {
+        out: out.to_path_buf(),
+        parent: parent.to_path_buf(),
+    })
 }
 
 /// Where a run or report goes: `out` if given (it must not exist, or be an empty folder, and
@@ -476,28 +599,24 @@ fn check_parent(out: &Path) -> Result<(), String> {
 /// # Errors
 /// An explicit `out` that exists and is not an empty folder, or whose parent is missing or a
 /// file; a name that cannot name a folder without `--out`.
-pub fn choose_folder(out: Option<&Path>, name: &str) -> Result<PathBuf, String> {
+pub fn choose_folder(out: Option<&Path>, name: &str) -> Result<PathBuf, OutputError> {
     if let Some(out) = out {
         if out.as_os_str().is_empty() {
-            return Err("--out must not be empty".into());
+            return Err(OutputError::EmptyOut);
         }
         if out.exists() {
             let empty = out.is_dir() && fs::read_dir(out).is_ok_and(|mut d| d.next().is_none());
             if !empty {
-                return Err(format!(
-                    "--out {} already exists and is not an empty folder: choose a new folder or remove it",
-                    out.display()
-                ));
+                return Err(OutputError::OutExists {
+                    out: out.to_path_buf(),
+                });
             }
         }
         check_parent(out)?;
         return Ok(out.to_path_buf());
     }
     if !folder_safe(name) {
-        return Err(format!(
-            "the scene name `{name}` cannot name the default output folder (letters, digits, \
-             -, _, . only, not starting with .): give --out DIR"
-        ));
+        return Err(OutputError::UnsafeName { name: name.into() });
     }
     let base = PathBuf::from(name);
     if !base.exists() {
@@ -555,29 +674,32 @@ impl Staging {
     ///
     /// # Errors
     /// I/O errors, with the path.
-    pub fn new(target: &Path) -> Result<Self, String> {
+    pub fn new(target: &Path) -> Result<Self, OutputError> {
         let name = target
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
-            .ok_or_else(|| format!("{} is not a folder name", target.display()))?;
+            .ok_or_else(|| OutputError::NotAFolderName {
+                target: target.to_path_buf(),
+            })?;
         let parent = match target.parent() {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
             _ => PathBuf::from("."),
         };
         if !parent.is_dir() {
-            return Err(format!(
-                "the parent folder {} does not exist: create it first",
-                parent.display()
-            ));
+            return Err(OutputError::ParentMissing { parent });
         }
         remove_stale_partials(&parent, &name);
         let temporary = parent.join(format!(".{name}.partial-{}", std::process::id()));
         if temporary.exists() {
-            fs::remove_dir_all(&temporary)
-                .map_err(|e| format!("cannot clear {}: {e}", temporary.display()))?;
+            fs::remove_dir_all(&temporary).map_err(|source| OutputError::Clear {
+                path: temporary.clone(),
+                source,
+            })?;
         }
-        fs::create_dir(&temporary)
-            .map_err(|e| format!("cannot create {}: {e}", temporary.display()))?;
+        fs::create_dir(&temporary).map_err(|source| OutputError::Create {
+            path: temporary.clone(),
+            source,
+        })?;
         Ok(Self {
             temporary,
             target: target.to_path_buf(),
@@ -599,22 +721,18 @@ impl Staging {
     ///
     /// # Errors
     /// I/O errors (the final name taken meanwhile by a non-empty folder), with both paths.
-    pub fn commit(mut self) -> Result<PathBuf, String> {
+    pub fn commit(mut self) -> Result<PathBuf, OutputError> {
         if self.target.is_dir() {
             // An empty folder given as --out (checked before the run): replace it.
-            fs::remove_dir(&self.target).map_err(|e| {
-                format!(
-                    "cannot replace {} (it must be empty): {e}",
-                    self.target.display()
-                )
+            fs::remove_dir(&self.target).map_err(|source| OutputError::Replace {
+                path: self.target.clone(),
+                source,
             })?;
         }
-        fs::rename(&self.temporary, &self.target).map_err(|e| {
-            format!(
-                "cannot rename {} to {}: {e}",
-                self.temporary.display(),
-                self.target.display()
-            )
+        fs::rename(&self.temporary, &self.target).map_err(|source| OutputError::Rename {
+            from: self.temporary.clone(),
+            to: self.target.clone(),
+            source,
         })?;
         self.committed = true;
         Ok(self.target.clone())

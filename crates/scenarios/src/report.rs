@@ -28,8 +28,10 @@ use std::fs;
 use std::path::Path;
 
 use rayon::prelude::*;
-use surfgrav_potentials::{Pose, Real, Spheroid, UniformDisk, Vec3};
-use surfgrav_surfaces::interaction::{Body, InteractionEngine, InteractionOptions};
+use surfgrav_potentials::{BodyError, Pose, Real, Spheroid, UniformDisk, Vec3};
+use surfgrav_surfaces::interaction::{
+    Body, InteractionEngine, InteractionError, InteractionOptions,
+};
 
 use crate::cli::{progress_bar, CliError};
 use crate::figures;
@@ -181,33 +183,43 @@ pub fn relative_separation_difference(p: &Pairing<'_>) -> Vec<(Real, Real)> {
         .collect()
 }
 
+/// Why the report's own computations (not its runs) failed.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ReportError {
+    /// A body of the report could not be built.
+    #[error(transparent)]
+    Body(#[from] BodyError),
+    /// The interaction engine refused or failed.
+    #[error(transparent)]
+    Engine(#[from] InteractionError),
+}
+
 /// Mutual energy of two equal bodies side by side in their equatorial plane at separation r.
-fn pair_energy(body: &Body, r: Real) -> Result<Real, String> {
-    let mut engine =
-        InteractionEngine::new(InteractionOptions::default()).map_err(|e| e.to_string())?;
-    engine
+fn pair_energy(body: &Body, r: Real) -> Result<Real, ReportError> {
+    let mut engine = InteractionEngine::new(InteractionOptions::default())?;
+    Ok(engine
         .interact(
             body,
             &Pose::identity(),
             body,
             &Pose::new(Vec3::new(r, 0.0, 0.0), Vec3::zeros()),
-        )
-        .map(|i| i.potential_energy)
-        .map_err(|e| e.to_string())
+        )?
+        .potential_energy)
 }
 
 /// The Maclaurin remark's numbers: for each separation, the mutual energies' excess over point
 /// masses, $V - (-1/r)$, of c/a = 0.01 and c/a = 0.001 spheroid pairs and of uniform disk
 /// pairs (a = R = 1, m = 1, G = 1), and the ratio spheroid/disk.
-pub fn flat_limit_energies(separations: &[Real]) -> Result<Vec<[Real; 5]>, String> {
-    let spheroid = |c: Real| -> Result<Body, String> {
-        Body::spheroid(Spheroid::new(1.0, c, 1.0).map_err(|e| e.to_string())?)
-            .map_err(|e| e.to_string())
-    };
+///
+/// # Errors
+/// The bodies' or the engine's errors (none for these fixed bodies at separations ≥ 2).
+pub fn flat_limit_energies(separations: &[Real]) -> Result<Vec<[Real; 5]>, ReportError> {
+    let spheroid =
+        |c: Real| -> Result<Body, ReportError> { Ok(Body::spheroid(Spheroid::new(1.0, c, 1.0)?)?) };
     let flat = spheroid(0.01)?;
     let flatter = spheroid(0.001)?;
-    let disk = Body::disk(UniformDisk::new(1.0, 1.0).map_err(|e| e.to_string())?)
-        .map_err(|e| e.to_string())?;
+    let disk = Body::disk(UniformDisk::new(1.0, 1.0)?)?;
     separations
         .iter()
         .map(|&r| {
@@ -233,8 +245,8 @@ fn sci(x: Real) -> String {
 /// # Errors
 /// A bad `--out`; a failed run or figure.
 pub fn report_command(out: Option<&Path>, quiet: bool) -> Result<String, CliError> {
-    let folder = choose_folder(out, "report").map_err(CliError::Input)?;
-    let staging = Staging::new(&folder).map_err(CliError::Failed)?;
+    let folder = choose_folder(out, "report").map_err(|e| CliError::Input(e.to_string()))?;
+    let staging = Staging::new(&folder).map_err(|e| CliError::Failed(e.to_string()))?;
     let bar = progress_bar(quiet, REPORT_PRESETS.len() as u64, "report");
     let started = std::time::Instant::now();
     let runs: Vec<RunRecord> = REPORT_PRESETS
@@ -339,14 +351,15 @@ pub fn report_command(out: Option<&Path>, quiet: bool) -> Result<String, CliErro
         .and_then(|mut scene| {
             scene
                 .override_with(None, Some(0.05), None, None)
-                .map_err(CliError::Failed)?;
+                .map_err(|e| CliError::Failed(e.to_string()))?;
             run_scene(&scene).map_err(|e| CliError::Failed(format!("paper-2s, dt = 0.05: {e}")))
         })?
         .energy
         .step_changes
         .standard_deviation;
     let separations = [2.5, 3.0, 5.0, 7.0, 20.0];
-    let energies = flat_limit_energies(&separations).map_err(CliError::Failed)?;
+    let energies =
+        flat_limit_energies(&separations).map_err(|e| CliError::Failed(e.to_string()))?;
     let total_seconds = started.elapsed().as_secs_f64();
 
     let text = render(
@@ -359,7 +372,9 @@ pub fn report_command(out: Option<&Path>, quiet: bool) -> Result<String, CliErro
     );
     fs::write(staging.path().join("REPORT.md"), &text)
         .map_err(|e| CliError::Failed(format!("cannot write REPORT.md: {e}")))?;
-    let folder = staging.commit().map_err(CliError::Failed)?;
+    let folder = staging
+        .commit()
+        .map_err(|e| CliError::Failed(e.to_string()))?;
     if quiet {
         return Ok(String::new());
     }

@@ -1209,7 +1209,7 @@ fn run_task(sweep: &Sweep, task: &Task, root: &Path) -> Result<TaskResult, Strin
         None
     };
     let record = simulate::simulate(scene, &prepared, &mut |_| {}, &mut |row| match &mut csv {
-        Some(w) => w.write(row),
+        Some(w) => Ok(w.write(row)?),
         None => Ok(()),
     })
     .map_err(|e| e.to_string())?;
