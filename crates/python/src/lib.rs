@@ -48,7 +48,8 @@ fn _surfgrav(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(interaction::interact_batch, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::_sweep_plan, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::_sweep_task, m)?)?;
-    m.add_function(wrap_pyfunction!(sweep::_sweep_csv, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::_sweep_open, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::_sweep_finish, m)?)?;
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -189,16 +189,18 @@ def test_third_law_with_an_ellipsoid():
     ell = sg.Ellipsoid((1.0, 0.7, 0.4), 1.5)
     position = np.array([3.1, 0.9, -0.7])
     qa, qb = [0.3, -0.2, 0.9], [1.1, 0.4, 0.0]
-    r = sg.interact(poly, ell, position, orientation_a=qa, orientation_b=qb, tolerance=1e-12)
-    s = sg.interact(ell, poly, -position, orientation_a=qb, orientation_b=qa, tolerance=1e-12)
+    r = sg.interact(poly, ell, position, orientation_a=qa, orientation_b=qb, tolerance=1e-10)
+    s = sg.interact(ell, poly, -position, orientation_a=qb, orientation_b=qa, tolerance=1e-10)
     assert np.linalg.norm(r.torque_on_a) > 1e-4  # a real torque on the cube
     # Swapping the bodies integrates over the other surface in the other field: two different
-    # computations, each certified to 1e-12 relative; agreement to 1e-10 leaves a margin of ~50.
-    assert s.potential_energy == pytest.approx(r.potential_energy, rel=1e-10)
-    np.testing.assert_allclose(s.force_on_a, r.force_on_b, rtol=1e-10, atol=1e-10 * np.linalg.norm(r.force_on_a))
-    scale = np.linalg.norm(r.force_on_a) * np.linalg.norm(position)
-    np.testing.assert_allclose(s.torque_on_a, r.torque_on_b, atol=1e-9 * scale)
-    np.testing.assert_allclose(s.torque_on_b, r.torque_on_a, atol=1e-9 * scale)
+    # computations, each certified to 1e-10 relative (mesh pairs are certified at the engine's
+    # tolerance); their difference is below 2e-10, asserted at 1e-9.
+    assert s.potential_energy == pytest.approx(r.potential_energy, rel=1e-9)
+    scale = np.linalg.norm(r.force_on_a)
+    np.testing.assert_allclose(s.force_on_a, r.force_on_b, rtol=0, atol=1e-9 * scale)
+    scale *= np.linalg.norm(position)
+    np.testing.assert_allclose(s.torque_on_a, r.torque_on_b, rtol=0, atol=1e-9 * scale)
+    np.testing.assert_allclose(s.torque_on_b, r.torque_on_a, rtol=0, atol=1e-9 * scale)
     # Far apart, the pair tends to point masses: |F| -> G m_A m_B / r² (to O((R/r)^2) = 1e-6).
     far = sg.interact(poly, ell, [1e3, 0.0, 0.0])
     assert np.linalg.norm(far.force_on_a) == pytest.approx(2.0 * 1.5 / 1e6, rel=1e-6)

@@ -119,6 +119,172 @@ pub enum SweepAction {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Errors.
+
+/// Why a sweep cannot run, or a part of it failed. The messages are the command line's.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SweepError {
+    /// The sweep file (or a task's scene made from it) is wrong: one line naming the file, the
+    /// line, the field and what to change. Exit code 2; nothing is written.
+    #[error("{0}")]
+    Definition(String),
+    /// An option or the output folder is wrong (`--shard`, `--jobs`, `--out`, merge folders).
+    /// Exit code 2.
+    #[error("{0}")]
+    Usage(String),
+    /// A bad `--shard K/N`.
+    #[error(transparent)]
+    Shard(#[from] ShardError),
+    /// A task's run failed (its message as in `manifest.json`).
+    #[error(transparent)]
+    Run(#[from] simulate::RunError),
+    /// A file could not be read or written.
+    #[error("{0}")]
+    Io(String),
+}
+
+impl From<SweepError> for CliError {
+    fn from(e: SweepError) -> Self {
+        match e {
+            SweepError::Definition(_) | SweepError::Usage(_) | SweepError::Shard(_) => {
+                CliError::Input(e.to_string())
+            }
+            SweepError::Run(_) | SweepError::Io(_) => CliError::Failed(e.to_string()),
+        }
+    }
+}
+
+/// A malformed field path.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum FieldPathError {
+    /// Not dotted keys with an optional `[index]`.
+    #[error("`{text}` is not a field path like body_b.mass or body_a.semi_axes[2]")]
+    NotAPath {
+        /// The text given.
+        text: String,
+    },
+    /// The index in `[...]` is not a whole number.
+    #[error("`{text}`: the index in [...] must be 0, 1 or 2")]
+    BadIndex {
+        /// The text given.
+        text: String,
+    },
+}
+
+/// Why an edit of the base scene cannot be applied.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum EditError {
+    /// A path without keys.
+    #[error("an empty field path")]
+    EmptyPath,
+    /// A key on the way is a value, not a table.
+    #[error("{table} is a value, not a table: {path} cannot be set")]
+    NotATable {
+        /// The keys walked so far.
+        table: String,
+        /// The path as written.
+        path: String,
+    },
+    /// An index into something that is not a vector.
+    #[error("{path} is not a vector: write it without [{index}]")]
+    NotAVector {
+        /// The dotted path.
+        path: String,
+        /// The index given.
+        index: usize,
+    },
+    /// An index past the vector's end.
+    #[error("{path}: index {index} is past the vector's {len} numbers")]
+    IndexPastEnd {
+        /// The path as written.
+        path: String,
+        /// The index given.
+        index: usize,
+        /// The vector's length.
+        len: usize,
+    },
+    /// `remove` with an index.
+    #[error("{path}: remove takes a whole field, without [...]")]
+    IndexedRemove {
+        /// The path as written.
+        path: String,
+    },
+    /// `remove` of a field the base does not have.
+    #[error("{path} is not in the base scene: nothing to remove")]
+    NotInBase {
+        /// The path as written.
+        path: String,
+    },
+}
+
+/// Bad parameters of a distribution.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DistributionError {
+    /// A parameter is NaN or infinite.
+    #[error("{kind}: the parameters must be finite numbers")]
+    NotFinite {
+        /// The distribution.
+        kind: String,
+    },
+    /// uniform with lo ≥ hi.
+    #[error("uniform(lo, hi) needs lo < hi, got lo = {lo}, hi = {hi}")]
+    Uniform {
+        /// Lower end.
+        lo: Real,
+        /// Upper end.
+        hi: Real,
+    },
+    /// normal with sd ≤ 0.
+    #[error("normal(mean, sd) needs sd > 0, got sd = {sd}")]
+    Normal {
+        /// Standard deviation.
+        sd: Real,
+    },
+    /// loguniform without 0 < lo < hi.
+    #[error("loguniform(lo, hi) needs 0 < lo < hi, got lo = {lo}, hi = {hi}")]
+    LogUniform {
+        /// Lower end.
+        lo: Real,
+        /// Upper end.
+        hi: Real,
+    },
+    /// Not uniform, normal or loguniform.
+    #[error("unknown distribution `{kind}`: expected uniform, normal or loguniform")]
+    Unknown {
+        /// The name given.
+        kind: String,
+    },
+}
+
+/// A bad `--shard K/N`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ShardError {
+    /// K ≥ N.
+    #[error(
+        "--shard {text}: K must be below N (shards are numbered 0 to {last}), got K = {index}"
+    )]
+    OutOfRange {
+        /// The text given.
+        text: String,
+        /// N − 1.
+        last: usize,
+        /// K.
+        index: usize,
+    },
+    /// Not `K/N` with whole numbers, or N = 0.
+    #[error("--shard {text}: expected K/N with whole numbers 0 ≤ K < N, e.g. --shard 0/4")]
+    Malformed {
+        /// The text given.
+        text: String,
+    },
+}
+
+// ---------------------------------------------------------------------------------------------
 // The sweep file as written.
 
 #[derive(Debug, Deserialize)]
@@ -179,17 +345,17 @@ impl FieldPath {
     ///
     /// # Errors
     /// What is malformed.
-    pub fn parse(text: &str) -> Result<Self, String> {
+    pub fn parse(text: &str) -> Result<Self, FieldPathError> {
         let trimmed = text.trim();
         let (head, index) = match trimmed.strip_suffix(']') {
             Some(rest) => {
-                let (head, i) = rest.rsplit_once('[').ok_or_else(|| {
-                    format!("`{text}` is not a field path like body_b.mass or body_a.semi_axes[2]")
-                })?;
+                let (head, i) = rest
+                    .rsplit_once('[')
+                    .ok_or_else(|| FieldPathError::NotAPath { text: text.into() })?;
                 let i: usize = i
                     .trim()
                     .parse()
-                    .map_err(|_| format!("`{text}`: the index in [...] must be 0, 1 or 2"))?;
+                    .map_err(|_| FieldPathError::BadIndex { text: text.into() })?;
                 (head, Some(i))
             }
             None => (trimmed, None),
@@ -198,9 +364,7 @@ impl FieldPath {
         let valid =
             |k: &String| !k.is_empty() && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
         if !keys.iter().all(valid) {
-            return Err(format!(
-                "`{text}` is not a field path like body_b.mass or body_a.semi_axes[2]"
-            ));
+            return Err(FieldPathError::NotAPath { text: text.into() });
         }
         Ok(Self {
             keys,
@@ -229,9 +393,9 @@ const ALTERNATIVES: &[&[&str]] = &[
 ];
 
 /// The table holding the path's last key, created where missing.
-fn parent_table<'t>(doc: &'t mut Table, path: &FieldPath) -> Result<&'t mut Table, String> {
+fn parent_table<'t>(doc: &'t mut Table, path: &FieldPath) -> Result<&'t mut Table, EditError> {
     let mut table = doc;
-    let (_, parents) = path.keys.split_last().ok_or("an empty field path")?;
+    let (_, parents) = path.keys.split_last().ok_or(EditError::EmptyPath)?;
     let mut walked = Vec::new();
     for key in parents {
         walked.push(key.as_str());
@@ -241,11 +405,10 @@ fn parent_table<'t>(doc: &'t mut Table, path: &FieldPath) -> Result<&'t mut Tabl
         table = match entry {
             Value::Table(t) => t,
             _ => {
-                return Err(format!(
-                    "{} is a value, not a table: {} cannot be set",
-                    walked.join("."),
-                    path.as_str()
-                ))
+                return Err(EditError::NotATable {
+                    table: walked.join("."),
+                    path: path.as_str().into(),
+                })
             }
         };
     }
@@ -275,7 +438,7 @@ fn coerce(new: Value, old: Option<&Value>) -> Value {
 }
 
 /// Sets `path` to `value` in the document, dropping the key's alternatives in its table.
-fn set_field(doc: &mut Table, path: &FieldPath, value: Value) -> Result<(), String> {
+fn set_field(doc: &mut Table, path: &FieldPath, value: Value) -> Result<(), EditError> {
     let table = parent_table(doc, path)?;
     let last = path.keys.last().cloned().unwrap_or_default();
     // `spin` is read as angular_velocity: write the canonical key.
@@ -304,18 +467,19 @@ fn set_field(doc: &mut Table, path: &FieldPath, value: Value) -> Result<(), Stri
                 .entry(key.clone())
                 .or_insert_with(|| Value::Array(vec![Value::Float(0.0); 3]));
             let Value::Array(items) = entry else {
-                return Err(format!(
-                    "{} is not a vector: write it without [{i}]",
-                    path.dotted()
-                ));
+                return Err(EditError::NotAVector {
+                    path: path.dotted(),
+                    index: i,
+                });
             };
-            let old = items.get(i).cloned().ok_or_else(|| {
-                format!(
-                    "{}: index {i} is past the vector's {} numbers",
-                    path.as_str(),
-                    items.len()
-                )
-            })?;
+            let old = items
+                .get(i)
+                .cloned()
+                .ok_or_else(|| EditError::IndexPastEnd {
+                    path: path.as_str().into(),
+                    index: i,
+                    len: items.len(),
+                })?;
             items[i] = coerce(value, Some(&old));
         }
     }
@@ -323,18 +487,16 @@ fn set_field(doc: &mut Table, path: &FieldPath, value: Value) -> Result<(), Stri
 }
 
 /// Removes `path` from the document; it must be there.
-fn remove_field(doc: &mut Table, path: &FieldPath) -> Result<(), String> {
+fn remove_field(doc: &mut Table, path: &FieldPath) -> Result<(), EditError> {
     if path.index.is_some() {
-        return Err(format!(
-            "{}: remove takes a whole field, without [...]",
-            path.as_str()
-        ));
+        return Err(EditError::IndexedRemove {
+            path: path.as_str().into(),
+        });
     }
     if lookup(doc, path).is_none() {
-        return Err(format!(
-            "{} is not in the base scene: nothing to remove",
-            path.as_str()
-        ));
+        return Err(EditError::NotInBase {
+            path: path.as_str().into(),
+        });
     }
     let table = parent_table(doc, path)?;
     table.remove(path.keys.last().map(String::as_str).unwrap_or_default());
@@ -360,24 +522,18 @@ impl Distribution {
     ///
     /// # Errors
     /// Non-finite values, lo ≥ hi, sd ≤ 0, a loguniform lo ≤ 0; with what to change.
-    pub fn new(kind: &str, a: Real, b: Real) -> Result<Self, String> {
+    pub fn new(kind: &str, a: Real, b: Real) -> Result<Self, DistributionError> {
         if !(a.is_finite() && b.is_finite()) {
-            return Err(format!("{kind}: the parameters must be finite numbers"));
+            return Err(DistributionError::NotFinite { kind: kind.into() });
         }
         match kind {
             "uniform" if a < b => Ok(Self::Uniform(a, b)),
-            "uniform" => Err(format!(
-                "uniform(lo, hi) needs lo < hi, got lo = {a}, hi = {b}"
-            )),
+            "uniform" => Err(DistributionError::Uniform { lo: a, hi: b }),
             "normal" if b > 0.0 => Ok(Self::Normal(a, b)),
-            "normal" => Err(format!("normal(mean, sd) needs sd > 0, got sd = {b}")),
+            "normal" => Err(DistributionError::Normal { sd: b }),
             "loguniform" if a > 0.0 && a < b => Ok(Self::LogUniform(a, b)),
-            "loguniform" => Err(format!(
-                "loguniform(lo, hi) needs 0 < lo < hi, got lo = {a}, hi = {b}"
-            )),
-            other => Err(format!(
-                "unknown distribution `{other}`: expected uniform, normal or loguniform"
-            )),
+            "loguniform" => Err(DistributionError::LogUniform { lo: a, hi: b }),
+            other => Err(DistributionError::Unknown { kind: other.into() }),
         }
     }
 
@@ -506,12 +662,17 @@ struct SweepLocator<'s> {
 }
 
 impl SweepLocator<'_> {
-    fn at<T>(&self, spanned: &Spanned<T>, field: &str, message: impl std::fmt::Display) -> String {
-        format!(
+    fn at<T>(
+        &self,
+        spanned: &Spanned<T>,
+        field: &str,
+        message: impl std::fmt::Display,
+    ) -> SweepError {
+        SweepError::Definition(format!(
             "{}:{}: {field}: {message}",
             self.file,
             line_of(self.source, spanned.span().start)
-        )
+        ))
     }
 }
 
@@ -536,7 +697,7 @@ fn grid_of(
     loc: &SweepLocator<'_>,
     vary: &VaryFile,
     field: &str,
-) -> Result<Option<Generator>, String> {
+) -> Result<Option<Generator>, SweepError> {
     if let Some(v) = &vary.values {
         if v.get_ref().is_empty() {
             return Err(loc.at(v, field, "values is empty: give at least one value"));
@@ -603,7 +764,7 @@ fn distribution_of(
     loc: &SweepLocator<'_>,
     vary: &VaryFile,
     field: &str,
-) -> Result<Option<Distribution>, String> {
+) -> Result<Option<Distribution>, SweepError> {
     for (kind, spanned) in [
         ("uniform", &vary.uniform),
         ("normal", &vary.normal),
@@ -758,10 +919,11 @@ impl Sweep {
     ///
     /// # Errors
     /// One line naming the file, the line, the field and what to change.
-    pub fn load(path: &Path) -> Result<Self, String> {
+    pub fn load(path: &Path) -> Result<Self, SweepError> {
         let file = path.display().to_string();
-        let source = fs::read_to_string(path)
-            .map_err(|e| format!("{file}: cannot read the sweep file: {e}"))?;
+        let source = fs::read_to_string(path).map_err(|e| {
+            SweepError::Definition(format!("{file}: cannot read the sweep file: {e}"))
+        })?;
         let dir = path.parent().unwrap_or(Path::new(""));
         let stem = path
             .file_stem()
@@ -775,15 +937,15 @@ impl Sweep {
     ///
     /// # Errors
     /// As [`Sweep::load`].
-    pub fn parse(source: &str, file: &str, dir: &Path, stem: &str) -> Result<Self, String> {
+    pub fn parse(source: &str, file: &str, dir: &Path, stem: &str) -> Result<Self, SweepError> {
         let loc = SweepLocator { file, source };
         let sweep: SweepFile = toml::from_str(source).map_err(|e| {
             let line = e.span().map(|s| line_of(source, s.start));
             let message = e.message().trim().replace('\n', " ");
-            match line {
+            SweepError::Definition(match line {
                 Some(l) => format!("{file}:{l}: {message}"),
                 None => format!("{file}: {message}"),
-            }
+            })
         })?;
 
         // The base scene, checked as it is (its own errors name its own lines).
@@ -816,9 +978,13 @@ impl Sweep {
         };
         SceneFile::parse(&base_text, &base_label)
             .and_then(|f| f.build(&base_text, &base_label))
-            .map_err(|e| e.to_string())?;
-        let mut document: Table = toml::from_str(&base_text)
-            .map_err(|e| format!("{base_label}: {}", e.message().trim().replace('\n', " ")))?;
+            .map_err(|e| SweepError::Definition(e.to_string()))?;
+        let mut document: Table = toml::from_str(&base_text).map_err(|e| {
+            SweepError::Definition(format!(
+                "{base_label}: {}",
+                e.message().trim().replace('\n', " ")
+            ))
+        })?;
 
         // Fixed edits: remove, then set.
         let mut origins = Vec::new();
@@ -945,7 +1111,9 @@ impl Sweep {
                     .map(|(v, _)| v);
                 return Err(match first {
                     Some(v) => loc.at(v, "draws", "a distribution needs draws = N (and seed = S)"),
-                    None => format!("{file}: draws: a distribution needs draws = N"),
+                    None => SweepError::Definition(format!(
+                        "{file}: draws: a distribution needs draws = N"
+                    )),
                 });
             }
             (None, false) => 1,
@@ -973,9 +1141,9 @@ impl Sweep {
             .unwrap_or(usize::MAX);
         let total = grid_points.saturating_mul(draws);
         if total > MAX_TASKS {
-            return Err(format!(
+            return Err(SweepError::Definition(format!(
                 "{file}: the sweep has {total} tasks, more than {MAX_TASKS}: make the grids or draws smaller"
-            ));
+            )));
         }
         let distributions: Vec<(usize, Distribution)> = parameters
             .iter()
@@ -1002,20 +1170,35 @@ impl Sweep {
             let mut task_parameters = Vec::with_capacity(parameters.len());
             for (p, v) in parameters.iter().zip(values) {
                 let v = v.unwrap_or(Value::Float(Real::NAN));
-                set_field(&mut doc, &p.path, v.clone())
-                    .map_err(|m| format!("{file}:{}: vary {}: {m}", p.line, p.path.as_str()))?;
+                set_field(&mut doc, &p.path, v.clone()).map_err(|m| {
+                    SweepError::Definition(format!(
+                        "{file}:{}: vary {}: {m}",
+                        p.line,
+                        p.path.as_str()
+                    ))
+                })?;
                 task_parameters.push((p.path.as_str().to_string(), v));
             }
-            let text = toml::to_string(&doc).map_err(|e| format!("{file}: {e}"))?;
+            let text = toml::to_string(&doc)
+                .map_err(|e| SweepError::Definition(format!("{file}: {e}")))?;
             let label = format!("{file} task {index:05}");
             let scene = SceneFile::parse(&text, &label)
                 .and_then(|f| f.build(&text, &label))
-                .map_err(|e| attribute(file, &origins, index, &task_parameters, &text, &e))?;
+                .map_err(|e| {
+                    SweepError::Definition(attribute(
+                        file,
+                        &origins,
+                        index,
+                        &task_parameters,
+                        &text,
+                        &e,
+                    ))
+                })?;
             scene.integrator.make().map_err(|m| {
-                format!(
+                SweepError::Definition(format!(
                     "{file}: task {index:05}: {}: {m}",
                     show_parameters(&task_parameters)
-                )
+                ))
             })?;
             hash = fnv1a(text.as_bytes(), hash);
             hash = fnv1a(&[0], hash);
@@ -1157,17 +1340,16 @@ fn task_result(scene: &Scene, record: &simulate::RunRecord) -> TaskResult {
 /// callers that distribute the tasks themselves (the Python package's `surfgrav.sweep`).
 ///
 /// # Errors
-/// The run's message, as in `manifest.json`.
-pub fn run_scene(scene: &Scene) -> Result<TaskResult, String> {
-    let prepared = simulate::prepare(scene).map_err(|e| e.to_string())?;
-    let record = simulate::simulate(scene, &prepared, &mut |_| {}, &mut |_| Ok(()))
-        .map_err(|e| e.to_string())?;
+/// The run's error ([`SweepError::Run`]), its message as in `manifest.json`.
+pub fn run_scene(scene: &Scene) -> Result<TaskResult, SweepError> {
+    let prepared = simulate::prepare(scene)?;
+    let record = simulate::simulate(scene, &prepared, &mut |_| {}, &mut |_| Ok(()))?;
     Ok(task_result(scene, &record))
 }
 
 /// A task's row for [`results_csv_text`]: its index, parameters (as [`Task::parameters`]) and
-/// outcome ([`run_scene`]'s: the result, or the failure's message).
-pub type TaskOutcome = (usize, Vec<(String, Value)>, Result<TaskResult, String>);
+/// outcome ([`run_scene`]'s: the result, or the failure).
+pub type TaskOutcome = (usize, Vec<(String, Value)>, Result<TaskResult, SweepError>);
 
 /// The text of `results.csv`, as `surfgrav sweep` writes it, for these tasks. Rows are sorted
 /// by index.
@@ -1180,7 +1362,7 @@ pub fn results_csv_text(fields: &[String], rows: &[TaskOutcome]) -> String {
                 results.insert(*index, r.clone());
                 (Status::Done, None)
             }
-            Err(m) => (Status::Failed, Some(m.clone())),
+            Err(e) => (Status::Failed, Some(e.to_string())),
         };
         tasks.push(ManifestTask {
             task: *index,
@@ -1193,31 +1375,58 @@ pub fn results_csv_text(fields: &[String], rows: &[TaskOutcome]) -> String {
     results_csv(fields, &tasks, &results)
 }
 
-/// Runs one task into `root/tasks/NNNNN` (staged).
-fn run_task(sweep: &Sweep, task: &Task, root: &Path) -> Result<TaskResult, String> {
+/// What a task writes beyond `summary.json` and `task.toml`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct TaskFiles {
+    /// `trajectory.csv`.
+    pub trajectory: bool,
+    /// The run's figures.
+    pub figures: bool,
+}
+
+impl Sweep {
+    /// What each task of this sweep writes.
+    pub fn task_files(&self) -> TaskFiles {
+        TaskFiles {
+            trajectory: self.save_trajectory,
+            figures: self.save_figures,
+        }
+    }
+}
+
+/// A file-writing failure as [`SweepError::Io`] (its message unchanged).
+fn io_error(e: impl std::fmt::Display) -> SweepError {
+    SweepError::Io(e.to_string())
+}
+
+/// Runs one task into `root/tasks/NNNNN` (staged: the folder appears whole, with
+/// `summary.json` last, or not at all), as `surfgrav sweep` does.
+///
+/// # Errors
+/// The run's error ([`SweepError::Run`]) or a file that could not be written
+/// ([`SweepError::Io`]); nothing is left that looks finished.
+pub fn run_task(root: &Path, task: &Task, files: TaskFiles) -> Result<TaskResult, SweepError> {
     let scene = &task.scene;
     let target = root.join(task_folder(task.index));
-    let staging = Staging::new(&target)?;
+    let staging = Staging::new(&target).map_err(io_error)?;
     fs::write(staging.path().join("scene.toml"), &task.scene_text)
-        .map_err(|e| format!("cannot write scene.toml: {e}"))?;
-    let prepared = simulate::prepare(scene).map_err(|e| e.to_string())?;
-    let mut csv = if sweep.save_trajectory {
-        Some(TrajectoryWriter::create(
-            &staging.path().join("trajectory.csv"),
-        )?)
+        .map_err(|e| SweepError::Io(format!("cannot write scene.toml: {e}")))?;
+    let prepared = simulate::prepare(scene)?;
+    let mut csv = if files.trajectory {
+        Some(TrajectoryWriter::create(&staging.path().join("trajectory.csv")).map_err(io_error)?)
     } else {
         None
     };
     let record = simulate::simulate(scene, &prepared, &mut |_| {}, &mut |row| match &mut csv {
-        Some(w) => Ok(w.write(row)?),
+        Some(w) => w.write(row).map_err(|e| e.to_string()),
         None => Ok(()),
-    })
-    .map_err(|e| e.to_string())?;
+    })?;
     if let Some(w) = csv {
-        w.finish()?;
+        w.finish().map_err(io_error)?;
     }
-    if sweep.save_figures {
-        crate::figures::write_all(&record, staging.path()).map_err(|e| format!("figures: {e}"))?;
+    if files.figures {
+        crate::figures::write_all(&record, staging.path())
+            .map_err(|e| SweepError::Io(format!("figures: {e}")))?;
     }
     let result = task_result(scene, &record);
     let file = TaskFile {
@@ -1225,17 +1434,18 @@ fn run_task(sweep: &Sweep, task: &Task, root: &Path) -> Result<TaskResult, Strin
         parameters: task.parameters.iter().cloned().collect(),
         result: result.clone(),
     };
-    let text = toml::to_string(&file).map_err(|e| e.to_string())?;
+    let text = toml::to_string(&file).map_err(|e| SweepError::Io(e.to_string()))?;
     fs::write(staging.path().join("task.toml"), text)
-        .map_err(|e| format!("cannot write task.toml: {e}"))?;
+        .map_err(|e| SweepError::Io(format!("cannot write task.toml: {e}")))?;
     // summary.json last: its presence marks the task finished (after the rename).
-    output::write_summary(&record, &staging.path().join("summary.json"))?;
-    staging.commit()?;
+    output::write_summary(&record, &staging.path().join("summary.json")).map_err(io_error)?;
+    staging.commit().map_err(io_error)?;
     Ok(result)
 }
 
-/// A finished task's result, read back from its folder (`None` if it is not finished).
-fn finished(root: &Path, index: usize) -> Option<TaskResult> {
+/// A finished task's result, read back from its folder under `root` (`None` if it is not
+/// finished: no `summary.json`, or a `task.toml` of another task).
+pub fn finished(root: &Path, index: usize) -> Option<TaskResult> {
     let folder = root.join(task_folder(index));
     if !folder.join("summary.json").is_file() {
         return None;
@@ -1289,7 +1499,7 @@ impl Shard {
     ///
     /// # Errors
     /// A malformed value or K ≥ N.
-    pub fn parse(text: &str) -> Result<Self, String> {
+    pub fn parse(text: &str) -> Result<Self, ShardError> {
         let parsed = text.split_once('/').and_then(|(k, n)| {
             Some((
                 k.trim().parse::<usize>().ok()?,
@@ -1298,13 +1508,12 @@ impl Shard {
         });
         match parsed {
             Some((index, count)) if count >= 1 && index < count => Ok(Self { index, count }),
-            Some((index, count)) if count >= 1 => Err(format!(
-                "--shard {text}: K must be below N (shards are numbered 0 to {}), got K = {index}",
-                count - 1
-            )),
-            _ => Err(format!(
-                "--shard {text}: expected K/N with whole numbers 0 ≤ K < N, e.g. --shard 0/4"
-            )),
+            Some((index, count)) if count >= 1 => Err(ShardError::OutOfRange {
+                text: text.into(),
+                last: count - 1,
+                index,
+            }),
+            _ => Err(ShardError::Malformed { text: text.into() }),
         }
     }
 }
@@ -1441,17 +1650,17 @@ fn results_csv(
 }
 
 /// Writes a file whole: a hidden temporary sibling, then a rename.
-fn write_atomic(path: &Path, text: &str) -> Result<(), String> {
+fn write_atomic(path: &Path, text: &str) -> Result<(), SweepError> {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let temporary = path.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
     fs::write(&temporary, text)
-        .map_err(|e| format!("cannot write {}: {e}", temporary.display()))?;
+        .map_err(|e| SweepError::Io(format!("cannot write {}: {e}", temporary.display())))?;
     fs::rename(&temporary, path).map_err(|e| {
         let _ = fs::remove_file(&temporary);
-        format!("cannot write {}: {e}", path.display())
+        SweepError::Io(format!("cannot write {}: {e}", path.display()))
     })
 }
 
@@ -1466,7 +1675,7 @@ fn file_names(shard: Option<Shard>) -> (String, String) {
 }
 
 /// Every manifest in a folder (`manifest.json` and the shards').
-fn manifests_in(dir: &Path) -> Result<Vec<(PathBuf, Manifest)>, String> {
+fn manifests_in(dir: &Path) -> Result<Vec<(PathBuf, Manifest)>, SweepError> {
     let mut found = Vec::new();
     let Ok(entries) = fs::read_dir(dir) else {
         return Ok(found);
@@ -1482,10 +1691,11 @@ fn manifests_in(dir: &Path) -> Result<Vec<(PathBuf, Manifest)>, String> {
         .collect();
     paths.sort();
     for p in paths {
-        let text =
-            fs::read_to_string(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
-        let m: Manifest = serde_json::from_str(&text)
-            .map_err(|e| format!("{} is not a sweep manifest: {e}", p.display()))?;
+        let text = fs::read_to_string(&p)
+            .map_err(|e| SweepError::Usage(format!("cannot read {}: {e}", p.display())))?;
+        let m: Manifest = serde_json::from_str(&text).map_err(|e| {
+            SweepError::Usage(format!("{} is not a sweep manifest: {e}", p.display()))
+        })?;
         found.push((p, m));
     }
     Ok(found)
@@ -1493,9 +1703,9 @@ fn manifests_in(dir: &Path) -> Result<Vec<(PathBuf, Manifest)>, String> {
 
 /// Whether `out` can hold this sweep: absent (its parent a folder), or a folder with nothing but
 /// this sweep's files (manifests of the same definition, results, tasks/, hidden files).
-fn check_out(out: &Path, hash: &str) -> Result<(), String> {
+fn check_out(out: &Path, hash: &str) -> Result<(), SweepError> {
     if out.as_os_str().is_empty() {
-        return Err("--out must not be empty".into());
+        return Err(SweepError::Usage("--out must not be empty".into()));
     }
     if !out.exists() {
         let parent = match out.parent() {
@@ -1503,32 +1713,32 @@ fn check_out(out: &Path, hash: &str) -> Result<(), String> {
             _ => Path::new("."),
         };
         if !parent.is_dir() {
-            return Err(format!(
+            return Err(SweepError::Usage(format!(
                 "--out {}: the folder {} does not exist: create it first or choose another path",
                 out.display(),
                 parent.display()
-            ));
+            )));
         }
         return Ok(());
     }
     if !out.is_dir() {
-        return Err(format!(
+        return Err(SweepError::Usage(format!(
             "{} is a file, not a sweep folder: choose another --out",
             out.display()
-        ));
+        )));
     }
     for (path, m) in manifests_in(out)? {
         if m.definition_hash != hash {
-            return Err(format!(
+            return Err(SweepError::Usage(format!(
                 "{} belongs to another sweep (definition {} here, {hash} in the sweep file): \
                  choose another --out, or remove that folder",
                 path.display(),
                 m.definition_hash
-            ));
+            )));
         }
     }
     let foreign = fs::read_dir(out)
-        .map_err(|e| format!("cannot read {}: {e}", out.display()))?
+        .map_err(|e| SweepError::Usage(format!("cannot read {}: {e}", out.display())))?
         .flatten()
         .map(|e| e.file_name().to_string_lossy().into_owned())
         .find(|n| {
@@ -1540,10 +1750,10 @@ fn check_out(out: &Path, hash: &str) -> Result<(), String> {
                 || (n.starts_with("results-shard-") && n.ends_with(".csv")))
         });
     if let Some(n) = foreign {
-        return Err(format!(
+        return Err(SweepError::Usage(format!(
             "{} exists and holds `{n}`, which is not part of a sweep: choose a new --out",
             out.display()
-        ));
+        )));
     }
     Ok(())
 }
@@ -1567,146 +1777,222 @@ pub struct SweepReport {
     pub files: (String, String),
 }
 
+/// A sweep's share of tasks in its output folder: which are finished (read back from their
+/// folders, as a re-run finds them) and which are still to run. [`run_sweep`] runs the pending
+/// tasks with rayon; the Python package hands them to any executor and records the outcomes
+/// here, so both write the same `manifest.json` and `results.csv` and resume alike.
+#[derive(Debug, Clone)]
+pub struct SweepFolder {
+    /// The folder.
+    pub folder: PathBuf,
+    /// This run's share, if sharded.
+    pub shard: Option<Shard>,
+    /// Every selected task's manifest entry, in index order.
+    pub entries: Vec<ManifestTask>,
+    /// Finished tasks' results, by index.
+    pub results: BTreeMap<usize, TaskResult>,
+    /// Tasks finished before this run (skipped).
+    pub skipped: usize,
+}
+
+impl SweepFolder {
+    /// Checks `out` (absent, or a folder of this same sweep), creates `out/tasks`, reads back
+    /// the finished tasks of the share and writes the manifest (finished tasks `done`, the
+    /// others `pending`).
+    ///
+    /// # Errors
+    /// [`SweepError::Usage`] for a folder that is not this sweep's (nothing written);
+    /// [`SweepError::Io`] when the folder or manifest cannot be written.
+    pub fn open(sweep: &Sweep, out: &Path, shard: Option<Shard>) -> Result<Self, SweepError> {
+        check_out(out, &sweep.hash)?;
+        fs::create_dir_all(out.join("tasks"))
+            .map_err(|e| SweepError::Io(format!("cannot create {}: {e}", out.display())))?;
+        let mut results = BTreeMap::new();
+        let mut entries = Vec::new();
+        for t in sweep
+            .tasks
+            .iter()
+            .filter(|t| shard.is_none_or(|s| t.index % s.count == s.index))
+        {
+            let done = finished(out, t.index);
+            entries.push(ManifestTask {
+                task: t.index,
+                folder: task_folder(t.index),
+                parameters: parameters_json(&t.parameters),
+                status: if done.is_some() {
+                    Status::Done
+                } else {
+                    Status::Pending
+                },
+                message: None,
+            });
+            if let Some(r) = done {
+                results.insert(t.index, r);
+            }
+        }
+        let folder = Self {
+            folder: out.to_path_buf(),
+            shard,
+            skipped: results.len(),
+            entries,
+            results,
+        };
+        folder.write_manifest(sweep)?;
+        Ok(folder)
+    }
+
+    /// The indices of the tasks still to run.
+    pub fn pending(&self) -> Vec<usize> {
+        self.entries
+            .iter()
+            .filter(|e| e.status == Status::Pending)
+            .map(|e| e.task)
+            .collect()
+    }
+
+    /// Records a task's outcome (a task outside the share is ignored).
+    pub fn record(&mut self, index: usize, outcome: Result<TaskResult, SweepError>) {
+        let Ok(k) = self.entries.binary_search_by_key(&index, |e| e.task) else {
+            return;
+        };
+        let entry = &mut self.entries[k];
+        match outcome {
+            Ok(r) => {
+                entry.status = Status::Done;
+                entry.message = None;
+                self.results.insert(index, r);
+            }
+            Err(e) => {
+                entry.status = Status::Failed;
+                entry.message = Some(e.to_string());
+            }
+        }
+    }
+
+    /// The manifest and results files' names (`manifest.json`, `results.csv`, or the shard's).
+    pub fn file_names(&self) -> (String, String) {
+        file_names(self.shard)
+    }
+
+    /// Writes the manifest as it stands.
+    ///
+    /// # Errors
+    /// [`SweepError::Io`].
+    pub fn write_manifest(&self, sweep: &Sweep) -> Result<(), SweepError> {
+        let manifest = Manifest {
+            sweep: sweep.name.clone(),
+            base: sweep.base.clone(),
+            definition_hash: sweep.hash.clone(),
+            tasks_total: sweep.tasks.len(),
+            fields: sweep.fields.clone(),
+            draws: sweep.draws,
+            seed: sweep.seed,
+            shard: self.shard,
+            tasks: self.entries.clone(),
+        };
+        let text =
+            serde_json::to_string_pretty(&manifest).map_err(|e| SweepError::Io(e.to_string()))?;
+        write_atomic(&self.folder.join(self.file_names().0), &(text + "\n"))
+    }
+
+    /// Writes the manifest and the results file.
+    ///
+    /// # Errors
+    /// [`SweepError::Io`].
+    pub fn finish(&self, sweep: &Sweep) -> Result<(), SweepError> {
+        self.write_manifest(sweep)?;
+        write_atomic(
+            &self.folder.join(self.file_names().1),
+            &results_csv(&sweep.fields, &self.entries, &self.results),
+        )
+    }
+
+    /// The failed tasks with their messages.
+    pub fn failed(&self) -> Vec<(usize, String)> {
+        self.entries
+            .iter()
+            .filter(|e| e.status == Status::Failed)
+            .map(|e| (e.task, e.message.clone().unwrap_or_default()))
+            .collect()
+    }
+}
+
 /// Runs a sweep's share of tasks into `out`.
 ///
 /// # Errors
-/// Bad input (before anything is written) or I/O failures, as messages.
+/// Bad input (before anything is written) or I/O failures.
 pub fn run_sweep(
     sweep: &Sweep,
     out: &Path,
     shard: Option<Shard>,
     jobs: usize,
     progress: &(dyn Fn() + Sync),
-) -> Result<SweepReport, CliError> {
+) -> Result<SweepReport, SweepError> {
     let start = Instant::now();
-    check_out(out, &sweep.hash).map_err(CliError::Input)?;
-    let selected: Vec<&Task> = sweep
-        .tasks
-        .iter()
-        .filter(|t| shard.is_none_or(|s| t.index % s.count == s.index))
+    let folder = SweepFolder::open(sweep, out, shard)?;
+    let pending: Vec<&Task> = folder
+        .pending()
+        .into_iter()
+        .filter_map(|i| sweep.tasks.get(i))
         .collect();
-    fs::create_dir_all(out.join("tasks"))
-        .map_err(|e| CliError::Failed(format!("cannot create {}: {e}", out.display())))?;
-    let mut results: BTreeMap<usize, TaskResult> = BTreeMap::new();
-    let mut entries: Vec<ManifestTask> = Vec::with_capacity(selected.len());
-    let mut pending = Vec::new();
-    for t in &selected {
-        let done = finished(out, t.index);
-        entries.push(ManifestTask {
-            task: t.index,
-            folder: task_folder(t.index),
-            parameters: parameters_json(&t.parameters),
-            status: if done.is_some() {
-                Status::Done
-            } else {
-                Status::Pending
-            },
-            message: None,
-        });
-        match done {
-            Some(r) => {
-                results.insert(t.index, r);
-            }
-            None => pending.push(*t),
-        }
-    }
-    let skipped = selected.len() - pending.len();
-    let (manifest_name, results_name) = file_names(shard);
-    let manifest_of = |entries: &[ManifestTask]| Manifest {
-        sweep: sweep.name.clone(),
-        base: sweep.base.clone(),
-        definition_hash: sweep.hash.clone(),
-        tasks_total: sweep.tasks.len(),
-        fields: sweep.fields.clone(),
-        draws: sweep.draws,
-        seed: sweep.seed,
-        shard,
-        tasks: entries.to_vec(),
-    };
-    let write_manifest = |entries: &[ManifestTask]| -> Result<(), String> {
-        let text =
-            serde_json::to_string_pretty(&manifest_of(entries)).map_err(|e| e.to_string())?;
-        write_atomic(&out.join(&manifest_name), &(text + "\n"))
-    };
-    write_manifest(&entries).map_err(CliError::Failed)?;
-
-    let position: BTreeMap<usize, usize> = entries
-        .iter()
-        .enumerate()
-        .map(|(k, e)| (e.task, k))
-        .collect();
-    let state = Mutex::new((entries, results, Instant::now()));
+    let selected = folder.entries.len();
+    let skipped = folder.skipped;
+    let files = sweep.task_files();
+    let state = Mutex::new((folder, Instant::now()));
     let ran = AtomicUsize::new(0);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs)
         .build()
-        .map_err(|e| CliError::Failed(format!("cannot start {jobs} threads: {e}")))?;
+        .map_err(|e| SweepError::Io(format!("cannot start {jobs} threads: {e}")))?;
     pool.install(|| {
         pending.par_iter().for_each(|task| {
-            let outcome = run_task(sweep, task, out);
-            let mut guard = state.lock().unwrap_or_else(|p| p.into_inner());
-            let (entries, results, last_write) = &mut *guard;
-            let entry = &mut entries[position[&task.index]];
-            match outcome {
-                Ok(r) => {
-                    entry.status = Status::Done;
-                    results.insert(task.index, r);
-                    ran.fetch_add(1, Ordering::Relaxed);
-                }
-                Err(m) => {
-                    entry.status = Status::Failed;
-                    entry.message = Some(m);
-                }
+            let outcome = run_task(out, task, files);
+            if outcome.is_ok() {
+                ran.fetch_add(1, Ordering::Relaxed);
             }
+            let mut guard = state.lock().unwrap_or_else(|p| p.into_inner());
+            let (folder, last_write) = &mut *guard;
+            folder.record(task.index, outcome);
             // The manifest follows the sweep every few seconds (it is also rebuilt from the
             // task folders on a re-run).
             if last_write.elapsed().as_secs_f64() > 5.0 {
-                let _ = write_manifest(entries);
+                let _ = folder.write_manifest(sweep);
                 *last_write = Instant::now();
             }
             drop(guard);
             progress();
         });
     });
-    let (entries, results, _) = state.into_inner().unwrap_or_else(|p| p.into_inner());
-    write_manifest(&entries).map_err(CliError::Failed)?;
-    write_atomic(
-        &out.join(&results_name),
-        &results_csv(&sweep.fields, &entries, &results),
-    )
-    .map_err(CliError::Failed)?;
-    let failed = entries
-        .iter()
-        .filter(|e| e.status == Status::Failed)
-        .map(|e| (e.task, e.message.clone().unwrap_or_default()))
-        .collect();
+    let (folder, _) = state.into_inner().unwrap_or_else(|p| p.into_inner());
+    folder.finish(sweep)?;
     Ok(SweepReport {
         folder: out.to_path_buf(),
-        selected: selected.len(),
+        selected,
         ran: ran.into_inner(),
         skipped,
-        failed,
+        failed: folder.failed(),
         wall_seconds: start.elapsed().as_secs_f64(),
-        files: (manifest_name, results_name),
+        files: folder.file_names(),
     })
 }
 
 /// Merges shard outputs: returns the folder written and the counts.
 ///
 /// # Errors
-/// No manifest found, manifests of different sweeps (bad input); I/O failures.
-pub fn merge(dirs: &[PathBuf], out: Option<&Path>) -> Result<(PathBuf, usize, usize), CliError> {
+/// No manifest found, manifests of different sweeps ([`SweepError::Usage`]); I/O failures
+/// ([`SweepError::Io`]).
+pub fn merge(dirs: &[PathBuf], out: Option<&Path>) -> Result<(PathBuf, usize, usize), SweepError> {
     let mut all = Vec::new();
     for d in dirs {
         if !d.is_dir() {
-            return Err(CliError::Input(format!(
+            return Err(SweepError::Usage(format!(
                 "{} is not a folder: give the sweep folders of the shards",
                 d.display()
             )));
         }
-        let found = manifests_in(d).map_err(CliError::Input)?;
+        let found = manifests_in(d)?;
         if found.is_empty() {
-            return Err(CliError::Input(format!(
+            return Err(SweepError::Usage(format!(
                 "{} holds no manifest.json or manifest-shard-K-of-N.json: not a sweep folder",
                 d.display()
             )));
@@ -1716,7 +2002,7 @@ pub fn merge(dirs: &[PathBuf], out: Option<&Path>) -> Result<(PathBuf, usize, us
     let (_, first_path, first) = &all[0];
     for (_, p, m) in &all[1..] {
         if m.definition_hash != first.definition_hash {
-            return Err(CliError::Input(format!(
+            return Err(SweepError::Usage(format!(
                 "{} is from another sweep than {} (definition {} against {}): merge the shards of one sweep",
                 p.display(),
                 first_path.display(),
@@ -1727,12 +2013,12 @@ pub fn merge(dirs: &[PathBuf], out: Option<&Path>) -> Result<(PathBuf, usize, us
     }
     let out = out.map_or_else(|| dirs[0].clone(), Path::to_path_buf);
     if out.exists() && !out.is_dir() {
-        return Err(CliError::Input(format!(
+        return Err(SweepError::Usage(format!(
             "--out {} is a file",
             out.display()
         )));
     }
-    check_out(&out, &first.definition_hash).map_err(CliError::Input)?;
+    check_out(&out, &first.definition_hash)?;
     // Per task, the best status found (done over failed over pending).
     let rank = |s: &Status| match s {
         Status::Done => 2,
@@ -1788,15 +2074,13 @@ pub fn merge(dirs: &[PathBuf], out: Option<&Path>) -> Result<(PathBuf, usize, us
         ..first.clone()
     };
     fs::create_dir_all(&out)
-        .map_err(|e| CliError::Failed(format!("cannot create {}: {e}", out.display())))?;
-    let text =
-        serde_json::to_string_pretty(&manifest).map_err(|e| CliError::Failed(e.to_string()))?;
-    write_atomic(&out.join("manifest.json"), &(text + "\n")).map_err(CliError::Failed)?;
+        .map_err(|e| SweepError::Io(format!("cannot create {}: {e}", out.display())))?;
+    let text = serde_json::to_string_pretty(&manifest).map_err(io_error)?;
+    write_atomic(&out.join("manifest.json"), &(text + "\n"))?;
     write_atomic(
         &out.join("results.csv"),
         &results_csv(&manifest.fields, &manifest.tasks, &results),
-    )
-    .map_err(CliError::Failed)?;
+    )?;
     Ok((out, manifest.tasks_total, done))
 }
 
@@ -1825,7 +2109,7 @@ pub fn sweep_command(args: SweepArgs) -> Result<String, CliError> {
         .as_deref()
         .map(Shard::parse)
         .transpose()
-        .map_err(CliError::Input)?;
+        .map_err(SweepError::from)?;
     let jobs = match args.jobs.as_deref() {
         Some(j) => match j.trim().parse::<usize>() {
             Ok(n) if n >= 1 => n,
@@ -1837,7 +2121,7 @@ pub fn sweep_command(args: SweepArgs) -> Result<String, CliError> {
         },
         None => std::thread::available_parallelism().map_or(1, usize::from),
     };
-    let sweep = Sweep::load(&file).map_err(CliError::Input)?;
+    let sweep = Sweep::load(&file)?;
     let out = match args.out {
         Some(o) => o,
         None => {

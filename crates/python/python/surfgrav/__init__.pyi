@@ -355,8 +355,11 @@ def sweep(
     sweep_file: Union[str, os.PathLike[str]],
     executor: Optional[Executor] = None,
     out: Optional[Union[str, os.PathLike[str]]] = None,
-) -> List[Dict[str, Any]]:
+) -> Dict[str, npt.NDArray[Any]]:
     """Runs a sweep file's tasks (expanded as `surfgrav sweep` does) through `executor.map`
-    (default: a local ThreadPoolExecutor; a Dask `Client.get_executor()` for a cluster); one
-    dict per task with results.csv's columns (task, status, the varied fields, mass_a, ...,
-    wall_seconds, message). With `out`, writes `out/results.csv` in the CLI's format."""
+    (default: a local ThreadPoolExecutor; a Dask `Client.get_executor()` for a cluster).
+    Returns results.csv's columns as numpy arrays, one row per task (`pandas.DataFrame(result)`
+    makes the table): task, status, the varied fields, mass_a, ..., steps (int64, -1 if
+    failed), ..., wall_seconds (float64, NaN where empty), message. With `out`, writes the
+    folder as `surfgrav sweep --out` does (task folders, manifest.json, results.csv) and
+    resumes it: finished tasks are skipped and read back."""
