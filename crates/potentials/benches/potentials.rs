@@ -188,6 +188,21 @@ fn polyhedron(c: &mut Criterion) {
     group.bench_function("parallel", |b| b.iter(|| black_box(&body).fields(&points)));
     group.finish();
 
+    // The local expansion over KW4 Beta's ball (296.1 m) 2540 m away, at the bound the KW4
+    // pair asks at 1e-10 (6e-13): construction (moment translation) and one point.
+    let ball = centre + Vec3::new(2540.0, 0.0, 0.0);
+    let local = body.local_expansion(&ball, 296.1, 6e-13).unwrap();
+    let inside = ball + dir * 250.0;
+    let mut group = c.benchmark_group("polyhedron_kw4_alpha_local");
+    group.bench_function(
+        format!("build N={} P={}", local.degree(), local.source_degree()),
+        |b| b.iter(|| black_box(&body).local_expansion(black_box(&ball), 296.1, 6e-13)),
+    );
+    group.bench_function(format!("field N={}", local.degree()), |b| {
+        b.iter(|| black_box(&local).field(black_box(&inside)))
+    });
+    group.finish();
+
     let mut group = c.benchmark_group("polyhedron_kw4_alpha_construction");
     group.sample_size(10);
     group.bench_function("validate_and_build", |b| {

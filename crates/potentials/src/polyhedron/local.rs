@@ -165,39 +165,57 @@ impl Polyhedron {
         let mp = self.reach_multipole();
         let unit = mp.radius;
         let xs = x / unit;
-        // I_n^m(X) to degree P + N; conj(M_n^m) for m of either sign.
+        // Rows over m = -n..n (entry n² + n + m): I_n^m(X) to degree P + N, conj(M_n^m), and
+        // conj(M_n^m) (-1)^m for the mixed-sign terms.
         let top = source_degree + degree;
         let mut irr = vec![C64::new(0.0, 0.0); index(top, top) + 1];
         multipole::irregular(&xs, top, &mut irr);
-        let irr_at = |n: usize, m: i64| {
-            if m >= 0 {
-                irr[index(n, m as usize)]
-            } else {
-                irr[index(n, (-m) as usize)].conj()
-            }
+        let full = |n: usize, at: &dyn Fn(usize, usize) -> C64| -> Vec<C64> {
+            (0..=n)
+                .flat_map(|i| {
+                    let row: Vec<C64> = (0..=2 * i)
+                        .map(|e| {
+                            let m = e as i64 - i as i64;
+                            if m >= 0 {
+                                at(i, m as usize)
+                            } else {
+                                at(i, (-m) as usize).conj()
+                            }
+                        })
+                        .collect();
+                    row
+                })
+                .collect()
         };
-        let moment_conj = |n: usize, m: i64| {
-            if m >= 0 {
-                mp.moments[index(n, m as usize)].conj()
-            } else {
-                mp.moments[index(n, (-m) as usize)]
-            }
-        };
+        let irr = full(top, &|n, m| irr[index(n, m)]);
+        let moments = full(source_degree, &|n, m| mp.moments[index(n, m)].conj());
+        let alternating: Vec<C64> = (0..=source_degree)
+            .flat_map(|n| (0..=2 * n).map(move |e| (n, e)))
+            .zip(&moments)
+            .map(|((n, e), c)| if (n + e) % 2 == 1 { -c } else { *c })
+            .collect();
         // L_j^k, k ≥ 0 (L_j^{-k} is its conjugate: the field is real).
         let mut l = vec![C64::new(0.0, 0.0); index(degree, degree) + 1];
         for j in 0..=degree {
             for k in 0..=j {
                 let mut sum = C64::new(0.0, 0.0);
                 for n in 0..=source_degree {
-                    for m in -(n as i64)..=(n as i64) {
-                        let term = moment_conj(n, m) * irr_at(n + j, m + k as i64);
-                        let mixed = k > 0 && m < 0 && (k as i64).min(-m) % 2 == 1;
-                        if mixed {
-                            sum -= term;
-                        } else {
-                            sum += term;
-                        }
-                    }
+                    // Entry (n, m) of the moments at n² + n + m; (n + j, m + k) of irr at
+                    // (n+j)² + (n+j) + m + k.
+                    let row = n * n + n;
+                    let irow = (n + j) * (n + j) + (n + j) + k;
+                    let at = |m: i64| (row as i64 + m) as usize;
+                    let iat = |m: i64| (irow as i64 + m) as usize;
+                    let (n, k) = (n as i64, k as i64);
+                    // σ = 1 for m ≥ 0, (-1)^k for m < -k, (-1)^m for -k ≤ m < 0.
+                    sum += dot(&moments[at(0)..=at(n)], &irr[iat(0)..=iat(n)]);
+                    let far = dot(
+                        &moments[at(-n)..at(-n.min(k))],
+                        &irr[iat(-n)..iat(-n.min(k))],
+                    );
+                    sum += if k % 2 == 1 { -far } else { far };
+                    let m0 = -n.min(k);
+                    sum += dot(&alternating[at(m0)..at(0)], &irr[iat(m0)..iat(0)]);
                 }
                 l[index(j, k)] = if j % 2 == 1 { -sum } else { sum };
             }
@@ -262,6 +280,26 @@ impl Polyhedron {
             terms,
         })
     }
+}
+
+/// $\sum_i a_i b_i$ over two rows of equal length.
+#[inline]
+fn dot(a: &[C64], b: &[C64]) -> C64 {
+    // Four independent accumulators: the additions do not wait on each other.
+    let mut s = [0.0; 4];
+    let (pairs_a, pairs_b) = (a.chunks_exact(2), b.chunks_exact(2));
+    let (rest_a, rest_b) = (pairs_a.remainder(), pairs_b.remainder());
+    for (x, y) in pairs_a.zip(pairs_b) {
+        s[0] += x[0].re * y[0].re - x[0].im * y[0].im;
+        s[1] += x[0].re * y[0].im + x[0].im * y[0].re;
+        s[2] += x[1].re * y[1].re - x[1].im * y[1].im;
+        s[3] += x[1].re * y[1].im + x[1].im * y[1].re;
+    }
+    for (x, y) in rest_a.iter().zip(rest_b) {
+        s[0] += x.re * y.re - x.im * y.im;
+        s[1] += x.re * y.im + x.im * y.re;
+    }
+    C64::new(s[0] + s[2], s[1] + s[3])
 }
 
 impl LocalExpansion {

@@ -109,7 +109,7 @@ const NS_PER_MESH_NODE: Real = 250.0;
 /// The local expansion ([`LocalExpansion`]): per term $(n, m)$, $m \le n \le N$, of an
 /// evaluation, and per term pair of its construction ($(N+1)(N+2)/2$ times $(P+1)^2$).
 const NS_PER_LOCAL_TERM: Real = 5.0;
-const NS_PER_TRANSLATION_TERM: Real = 3.0;
+const NS_PER_TRANSLATION_TERM: Real = 2.0;
 
 /// Relative margin on the ball of a local expansion over the partner's bounding radius (the
 /// nodes, mapped between frames, carry rounding).
