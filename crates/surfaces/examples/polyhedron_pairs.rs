@@ -152,6 +152,9 @@ fn main() {
     if std::env::args().any(|a| a == "--levels") {
         levels("Didymos", &primary, &secondary, &pose, SurfaceChoice::A);
     }
+    if std::env::args().any(|a| a == "--work-precision") {
+        work_precision("Didymos", &primary, &secondary, &pose);
+    }
     run("Didymos", &primary, &secondary, &pose);
 
     let alpha = Mesh::read_obj(shapes().join("kw4_alpha.obj"), LengthUnit::Kilometres).unwrap();
@@ -176,7 +179,66 @@ fn main() {
         levels("KW4", &alpha, &beta, &pose, SurfaceChoice::B);
         levels("KW4", &alpha, &beta, &pose, SurfaceChoice::A);
     }
+    if std::env::args().any(|a| a == "--work-precision") {
+        work_precision("KW4", &alpha, &beta, &pose);
+    }
     run("KW4", &alpha, &beta, &pose);
+}
+
+/// Error against cost with the automatic choice: per tolerance the evaluations, CPU ms per
+/// interaction, the estimate and the true error against the reference over the other surface
+/// at 1e-13 (an independent route: the other body's field over this body's surface).
+pub fn work_precision(name: &str, a: &Body, b: &Body, pose_b: &Pose) {
+    let pose_a = Pose::identity();
+    let options = |tol: f64, surface| InteractionOptions {
+        relative_tolerance: tol,
+        surface,
+        ..InteractionOptions::default()
+    };
+    let mut engine = InteractionEngine::new(options(1e-10, SurfaceChoice::Automatic)).unwrap();
+    let chosen = engine
+        .interact(a, &pose_a, b, pose_b)
+        .unwrap()
+        .integrated_over;
+    let other = match chosen {
+        Some(surfgrav_surfaces::interaction::Side::A) => SurfaceChoice::B,
+        _ => SurfaceChoice::A,
+    };
+    let reference = InteractionEngine::new(options(1e-13, other))
+        .unwrap()
+        .interact(a, &pose_a, b, pose_b)
+        .unwrap();
+    println!(
+        "{name}: work-precision over {chosen:?}, reference over {other:?} at 1e-13 (estimate {:.1e}, {} evaluations)",
+        reference.error_estimate, reference.evaluations
+    );
+    println!("| tolerance | evaluations | CPU ms | estimate | true error |");
+    for tol in [1e-4, 1e-6, 1e-8, 1e-10, 1e-12] {
+        let mut engine = InteractionEngine::new(options(tol, SurfaceChoice::Automatic)).unwrap();
+        let r = match engine.interact(a, &pose_a, b, pose_b) {
+            Ok(r) => r,
+            Err(e) => {
+                println!("| {tol:.0e} | {e} |");
+                continue;
+            }
+        };
+        let t = Instant::now();
+        engine.interact(a, &pose_a, b, pose_b).unwrap();
+        let once = t.elapsed().as_secs_f64();
+        let repeats = ((0.5 / once.max(1e-6)).ceil() as u32).clamp(3, 2000);
+        let cpu = cpu_seconds();
+        for _ in 0..repeats {
+            engine.interact(a, &pose_a, b, pose_b).unwrap();
+        }
+        let cpu_per = (cpu_seconds() - cpu) / repeats as f64;
+        println!(
+            "| {tol:.0e} | {} | {:.2} | {:.1e} | {:.1e} |",
+            r.evaluations,
+            cpu_per * 1e3,
+            r.error_estimate,
+            error(&r, &reference)
+        );
+    }
 }
 
 #[allow(dead_code)]
