@@ -341,8 +341,9 @@ fn didymos_standard_pair_at_1e_10() {
 }
 
 /// The KW4 pair at 1e-10 (Alpha 9168 faces at 1970 kg/m³, Beta 2292 faces at 2810 kg/m³, 2540 m
-/// apart): over Beta in Alpha's expansion (degree ~33 at 2.9 Alpha radii), within its estimate
-/// of the reference over Alpha at 1e-13. Ignored: ~1 s release, minutes in a debug build
+/// apart, and at 1800, 2200 and 3500 m in other attitudes): over Beta in Alpha's local
+/// expansion (degree 19 over Beta's ball; at 1800 m the choice is over Alpha, in Beta's
+/// field), within its estimate of the reference over the other surface at 1e-13. Ignored: ~20 s release, minutes in a debug build
 /// (`cargo test --release -p surfgrav-surfaces --test polyhedron_pairs -- --ignored`).
 #[test]
 #[ignore]
@@ -359,26 +360,46 @@ fn kw4_pair_at_1e_10() {
     };
     let (alpha, beta) = (read("kw4_alpha.obj", 1970.0), read("kw4_beta.obj", 2810.0));
     let pa = Pose::identity();
-    let pb = Pose::new(Vec3::new(2540.0, 0.0, 0.0), Vec3::new(0.2, -0.3, 0.4));
-    let r = engine(1e-10, SurfaceChoice::Automatic)
-        .interact(&alpha, &pa, &beta, &pb)
-        .unwrap();
-    let reference = engine(1e-13, SurfaceChoice::A)
-        .interact(&alpha, &pa, &beta, &pb)
-        .unwrap();
-    let d = difference(&r, &reference);
-    println!(
-        "over {:?}: {} evaluations, estimate {:.2e}, true {:.2e}; reference {} evaluations (estimate {:.1e})",
-        r.integrated_over,
-        r.evaluations,
-        r.error_estimate,
-        d,
-        reference.evaluations,
-        reference.error_estimate
-    );
-    assert_eq!(r.integrated_over, Some(Side::B));
-    assert!(r.error_estimate <= 1e-10);
-    assert!(d <= r.error_estimate + reference.error_estimate);
+    // 1800 m: Beta's ball within 2 Alpha radii, Alpha's field by its closed form; 2540 m and
+    // beyond: by its local expansion about Beta.
+    for (distance, dir, rot) in [
+        (2540.0, Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.2, -0.3, 0.4)),
+        (1800.0, Vec3::new(0.6, 0.0, 0.8), Vec3::new(-0.5, 0.1, 0.9)),
+        (2200.0, Vec3::new(0.0, -0.8, 0.6), Vec3::new(1.2, 0.4, -0.3)),
+        (
+            3500.0,
+            Vec3::new(-0.48, 0.64, 0.6),
+            Vec3::new(0.0, 2.0, 0.5),
+        ),
+    ] {
+        let pb = Pose::new(dir * distance, rot);
+        let r = engine(1e-10, SurfaceChoice::Automatic)
+            .interact(&alpha, &pa, &beta, &pb)
+            .unwrap();
+        // The reference over the other surface: an independent route.
+        let other = match r.integrated_over {
+            Some(Side::B) => SurfaceChoice::A,
+            _ => SurfaceChoice::B,
+        };
+        let reference = engine(1e-13, other)
+            .interact(&alpha, &pa, &beta, &pb)
+            .unwrap();
+        let d = difference(&r, &reference);
+        println!(
+            "{distance} m: over {:?}: {} evaluations, estimate {:.2e}, true {:.2e}; reference {} evaluations (estimate {:.1e})",
+            r.integrated_over,
+            r.evaluations,
+            r.error_estimate,
+            d,
+            reference.evaluations,
+            reference.error_estimate
+        );
+        if distance > 2000.0 {
+            assert_eq!(r.integrated_over, Some(Side::B));
+        }
+        assert!(r.error_estimate <= 1e-10);
+        assert!(d <= r.error_estimate + reference.error_estimate);
+    }
 }
 
 /// Faces are cut where the partner is close relative to their size: at one fixed level of the
