@@ -377,10 +377,10 @@ struct Bounds {
 impl From<Rectangle> for Bounds {
     fn from(rectangle: Rectangle) -> Self {
         Bounds {
-            u_lower: rectangle.u.lower(),
-            u_upper: rectangle.u.upper(),
-            v_lower: rectangle.v.lower(),
-            v_upper: rectangle.v.upper(),
+            u_lower: rectangle.u.start(),
+            u_upper: rectangle.u.end(),
+            v_lower: rectangle.v.start(),
+            v_upper: rectangle.v.end(),
         }
     }
 }

@@ -92,7 +92,7 @@ impl GaussLegendre {
     /// # Errors
     /// As [`GaussLegendre::new`].
     pub fn standard(order: usize) -> Result<Self, QuadratureError> {
-        Self::on_interval(order, Interval::MINUS_ONE_TO_ONE)
+        Self::on_interval(order, Interval::SYMMETRIC_UNIT)
     }
 
     /// The rule of `order` points on `interval`.
@@ -163,7 +163,7 @@ impl GaussLegendre {
         self.weights.clear();
         for (&x, &w) in self.standard_nodes.iter().zip(&self.standard_weights) {
             // Clamp: rounding of midpoint + half_width * x must not leave [a, b].
-            let node = (midpoint + half_width * x).clamp(interval.lower(), interval.upper());
+            let node = (midpoint + half_width * x).clamp(interval.start(), interval.end());
             self.nodes.push(node);
             self.weights.push(half_width * w);
         }

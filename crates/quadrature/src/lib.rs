@@ -62,7 +62,7 @@ pub use nested::{
     NestedTensorRule, NestedTrapezoid,
 };
 pub use periodic_trapezoid::PeriodicTrapezoid;
-pub use rule::{Interval, Rule1D};
+pub use rule::{Interval, InvalidInterval, Rule1D};
 pub use sum::CompensatedSum;
 pub use tensor::{Rectangle, TensorNode, TensorProductRule};
 pub use twofold::two_sum;

@@ -192,7 +192,7 @@ impl NestedTrapezoid {
 
     /// The step $h\_\ell = P/N\_\ell$ that multiplies the sum at `level`.
     pub fn step(&self, level: usize) -> f64 {
-        self.interval.width() / (self.base << level.min(self.levels)) as f64
+        self.interval.length() / (self.base << level.min(self.levels)) as f64
     }
 
     /// $\varphi(\psi_j)$, in nested order.
@@ -250,7 +250,7 @@ impl NestedFejer {
             .iter()
             .map(|&m| {
                 let x = (std::f64::consts::PI * m as f64 / finest as f64).cos();
-                (mid + half * x).clamp(interval.lower(), interval.upper())
+                (mid + half * x).clamp(interval.start(), interval.end())
             })
             .collect();
         let mut weights = Vec::with_capacity(levels + 1);

@@ -40,7 +40,7 @@ impl PeriodicTrapezoid {
         let step = period / points as f64;
         let nodes: Vec<f64> = (0..points).map(|j| start + j as f64 * step).collect();
         let distinct = nodes.windows(2).all(|pair| pair[0] < pair[1]);
-        if !(distinct && nodes[points - 1] < interval.upper()) {
+        if !(distinct && nodes[points - 1] < interval.end()) {
             return Err(QuadratureError::InvalidPeriod { start, period });
         }
         let weights = vec![step; points];
@@ -58,7 +58,7 @@ impl PeriodicTrapezoid {
 
     /// The period $P$.
     pub fn period(&self) -> f64 {
-        self.interval.width()
+        self.interval.length()
     }
 }
 

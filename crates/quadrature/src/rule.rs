@@ -7,58 +7,98 @@
 //! from them once and reused for every force evaluation).
 
 use crate::QuadratureError;
+use std::f64::consts::TAU;
+use thiserror::Error;
 
-/// A finite interval $[a, b]$ with $a < b$ (for a periodic rule: one period $[a, a + P)$).
+/// A finite interval $[a, b]$ with $a < b$ and a finite length $b - a$ (for a periodic rule: one
+/// period $[a, a + P)$; for a surface: the range of one parameter). The workspace's one interval
+/// type: `surfgrav_surfaces::Interval` is this one.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Interval {
-    lower: f64,
-    upper: f64,
+    start: f64,
+    end: f64,
+}
+
+/// Why [`Interval::new`] refused its ends (converts into [`QuadratureError::InvalidInterval`]).
+#[derive(Debug, Clone, Copy, PartialEq, Error)]
+#[error("an interval needs finite ends with start < end and a finite length end - start, got [{start}, {end}]")]
+pub struct InvalidInterval {
+    /// The start given.
+    pub start: f64,
+    /// The end given.
+    pub end: f64,
+}
+
+impl From<InvalidInterval> for QuadratureError {
+    fn from(error: InvalidInterval) -> Self {
+        QuadratureError::InvalidInterval {
+            lower: error.start,
+            upper: error.end,
+        }
+    }
 }
 
 impl Interval {
-    /// The interval $[-1, 1]$ on which rules are usually tabulated.
-    pub const MINUS_ONE_TO_ONE: Interval = Interval {
-        lower: -1.0,
-        upper: 1.0,
+    /// $[-1, 1]$, on which rules are usually tabulated.
+    pub const SYMMETRIC_UNIT: Interval = Interval {
+        start: -1.0,
+        end: 1.0,
     };
 
-    /// The interval `[lower, upper]`.
+    /// $[0, 1]$.
+    pub const UNIT: Interval = Interval {
+        start: 0.0,
+        end: 1.0,
+    };
+
+    /// $[0, 2\pi]$, one turn of an azimuth.
+    pub const FULL_TURN: Interval = Interval {
+        start: 0.0,
+        end: TAU,
+    };
+
+    /// The interval `[start, end]`.
     ///
     /// # Errors
-    /// [`QuadratureError::InvalidInterval`] unless both bounds are finite, `lower < upper` and
-    /// the width `upper - lower` is finite.
-    pub fn new(lower: f64, upper: f64) -> Result<Self, QuadratureError> {
-        let valid = lower.is_finite() && upper.is_finite() && lower < upper;
-        if valid && (upper - lower).is_finite() {
-            Ok(Interval { lower, upper })
+    /// [`InvalidInterval`] unless both ends are finite, `start < end` and the length
+    /// `end - start` is finite.
+    pub fn new(start: f64, end: f64) -> Result<Self, InvalidInterval> {
+        let valid = start.is_finite() && end.is_finite() && start < end;
+        if valid && (end - start).is_finite() {
+            Ok(Interval { start, end })
         } else {
-            Err(QuadratureError::InvalidInterval { lower, upper })
+            Err(InvalidInterval { start, end })
         }
     }
 
-    /// The lower bound $a$.
-    pub fn lower(&self) -> f64 {
-        self.lower
+    /// The lower end $a$.
+    pub fn start(&self) -> f64 {
+        self.start
     }
 
-    /// The upper bound $b$.
-    pub fn upper(&self) -> f64 {
-        self.upper
+    /// The upper end $b$.
+    pub fn end(&self) -> f64 {
+        self.end
     }
 
-    /// The width $b - a$ (positive and finite).
-    pub fn width(&self) -> f64 {
-        self.upper - self.lower
+    /// The length $b - a$ (positive and finite).
+    pub fn length(&self) -> f64 {
+        self.end - self.start
     }
 
     /// The midpoint $(a + b)/2$, computed without overflow.
     pub fn midpoint(&self) -> f64 {
-        0.5 * self.lower + 0.5 * self.upper
+        0.5 * self.start + 0.5 * self.end
     }
 
-    /// Half the width, $(b - a)/2$.
+    /// Half the length, $(b - a)/2$.
     pub fn half_width(&self) -> f64 {
-        0.5 * self.width()
+        0.5 * self.length()
+    }
+
+    /// Whether `x` lies in the closed interval $[a, b]$.
+    pub fn contains(&self, x: f64) -> bool {
+        self.start <= x && x <= self.end
     }
 }
 

@@ -40,7 +40,7 @@ impl Rectangle {
 
     /// The area $(u_1 - u_0)(v_1 - v_0)$ in parameter units.
     pub fn area(&self) -> f64 {
-        self.u.width() * self.v.width()
+        self.u.length() * self.v.length()
     }
 }
 

@@ -3,8 +3,8 @@
 use std::f64::consts::PI;
 use surfgrav_quadrature::tolerance::{CONVERGED_RULE_REL, WEIGHT_SUM_REL};
 use surfgrav_quadrature::{
-    GaussLegendre, Interval, PeriodicTrapezoid, QuadratureError, Rule1D, TensorProductRule,
-    MAX_GAUSS_LEGENDRE_ORDER,
+    GaussLegendre, Interval, InvalidInterval, PeriodicTrapezoid, QuadratureError, Rule1D,
+    TensorProductRule, MAX_GAUSS_LEGENDRE_ORDER,
 };
 
 /// $\int_a^b ((x - m)/h)^k\\,dx = h \cdot 2/(k+1)$ for even k, 0 for odd k.
@@ -157,7 +157,7 @@ fn bad_orders_and_intervals_are_rejected() {
 fn interval_reports_its_geometry() {
     let interval = Interval::new(-2.0, 6.0).expect("valid interval");
     assert_eq!(
-        (interval.lower(), interval.upper(), interval.width()),
+        (interval.start(), interval.end(), interval.length()),
         (-2.0, 6.0, 8.0)
     );
     assert_eq!((interval.midpoint(), interval.half_width()), (2.0, 4.0));
@@ -165,9 +165,32 @@ fn interval_reports_its_geometry() {
     let huge = Interval::new(1e308, 1.5e308).expect("valid interval");
     assert_eq!(huge.midpoint(), 1.25e308);
     assert_eq!(
-        Interval::MINUS_ONE_TO_ONE,
+        Interval::SYMMETRIC_UNIT,
         Interval::new(-1.0, 1.0).expect("valid")
     );
+    assert_eq!(Interval::UNIT, Interval::new(0.0, 1.0).expect("valid"));
+    assert_eq!(Interval::FULL_TURN.length(), std::f64::consts::TAU);
+    // Closed at both ends.
+    assert!(interval.contains(-2.0) && interval.contains(6.0) && !interval.contains(6.5));
+    assert!(!interval.contains(f64::NAN));
+    // A refused interval says which ends, and converts into the crate's error.
+    let refused = Interval::new(2.0, 1.0).unwrap_err();
+    assert_eq!(
+        refused,
+        InvalidInterval {
+            start: 2.0,
+            end: 1.0
+        }
+    );
+    assert_eq!(
+        QuadratureError::from(refused),
+        QuadratureError::InvalidInterval {
+            lower: 2.0,
+            upper: 1.0
+        }
+    );
+    // An overflowing length is refused.
+    assert!(Interval::new(-f64::MAX, f64::MAX).is_err());
 }
 
 #[test]

@@ -161,7 +161,7 @@ mod tests {
             (0.0, f64::INFINITY),
         ] {
             assert!(matches!(
-                Interval::new(a, b),
+                Interval::new(a, b).map_err(NodeTableError::from),
                 Err(NodeTableError::InvalidInterval { .. })
             ));
         }

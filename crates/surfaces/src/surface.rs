@@ -21,62 +21,26 @@
 //! Where a parametrisation degenerates (a pole, where a whole row of parameters maps to one point)
 //! $\mathbf S$ stays finite; it may vanish there (polar-angle form) or not (azimuth–height form).
 
+use crate::interaction::InteractionError;
 use crate::{NodeTableError, Real, Vec3};
-use std::f64::consts::TAU;
 
-/// A closed interval $[\text{start}, \text{end}]$ with finite ends, start < end.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Interval {
-    start: Real,
-    end: Real,
-}
+/// The range of one surface parameter: `surfgrav_quadrature`'s [`Interval`] (finite ends,
+/// start < end, finite length), the same type the rules use.
+pub use surfgrav_quadrature::Interval;
+use surfgrav_quadrature::InvalidInterval;
 
-impl Interval {
-    /// $[-1, 1]$, where Gauss–Legendre rules are usually tabulated.
-    pub const SYMMETRIC_UNIT: Interval = Interval {
-        start: -1.0,
-        end: 1.0,
-    };
-
-    /// $[0, 1]$.
-    pub const UNIT: Interval = Interval {
-        start: 0.0,
-        end: 1.0,
-    };
-
-    /// $[0, 2\pi]$, one turn of an azimuth.
-    pub const FULL_TURN: Interval = Interval {
-        start: 0.0,
-        end: TAU,
-    };
-
-    /// An interval; fails unless both ends are finite and `start < end`.
-    pub fn new(start: Real, end: Real) -> Result<Self, NodeTableError> {
-        if start.is_finite() && end.is_finite() && start < end {
-            Ok(Self { start, end })
-        } else {
-            Err(NodeTableError::InvalidInterval { start, end })
+impl From<InvalidInterval> for NodeTableError {
+    fn from(error: InvalidInterval) -> Self {
+        NodeTableError::InvalidInterval {
+            start: error.start,
+            end: error.end,
         }
     }
+}
 
-    /// Lower end.
-    pub fn start(&self) -> Real {
-        self.start
-    }
-
-    /// Upper end.
-    pub fn end(&self) -> Real {
-        self.end
-    }
-
-    /// `end − start` (may overflow to +∞ for ends near ±`f64::MAX`).
-    pub fn length(&self) -> Real {
-        self.end - self.start
-    }
-
-    /// Whether `x` lies in the closed interval.
-    pub fn contains(&self, x: Real) -> bool {
-        self.start <= x && x <= self.end
+impl From<InvalidInterval> for InteractionError {
+    fn from(error: InvalidInterval) -> Self {
+        InteractionError::NodeTable(error.into())
     }
 }
 
