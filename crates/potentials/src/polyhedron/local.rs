@@ -42,7 +42,7 @@
 //!   $\frac{1}{D-r}\frac{q'^{P+1}}{1-q'}$ in $\Phi$ and $\frac{1}{(D-r)^2}\frac{q'^{P+1}[(P+2) -
 //!   (P+1)q']}{(1-q')^2}$ in $\mathbf a$ (differentiating in $r$).
 //!
-//! Relative to the lower bounds $|\Phi| \ge 1/(D + r + R)$ and $|\mathbf a| \ge \min_{s = D\pm
+//! Relative to the lower bounds $|\Phi| \ge 1/(D + r + R)$ and $|\mathbf a| \ge \min\_{s = D\pm
 //! r}(s-R)/(s+R)^3$ (every element pulls toward the centroid's side by at least that; the
 //! function is unimodal in $s$), the degrees chosen are the smallest whose sum of bounds is
 //! below the caller's relative bound, $P$ taking a tenth of it.

@@ -20,12 +20,18 @@
 //!
 //! # A polyhedron's field, certified at the tolerance
 //!
-//! Beyond 2 circumscribing radii a polyhedron's field is its exterior expansion to the degree
-//! whose bound relative to $|\Phi|$ and $|\mathbf a|$ is $b$
-//! ([`Polyhedron::field_expansion`]), otherwise its closed form. At node $k$ then $|\delta\Phi_k|
-//! \le b|\Phi_k|$ and $|\delta\mathbf a_k| \le b|\mathbf a_k|$, so each sum's truncation error is
-//! at most $b$ times the sum of the magnitudes of its terms: that is added to the estimate. $b$
-//! is chosen so that this stays below 5 % of the tolerance.
+//! Over a partner whose ball (its bounding radius about its centroid) stays
+//! [`REACH_RADII`](surfgrav_potentials::polyhedron::REACH_RADII)
+//! circumscribing radii from the polyhedron's centroid, the field can be the polyhedron's
+//! local expansion about the partner's centroid ([`Polyhedron::local_expansion`]: the degree-60
+//! exterior moments translated once per interaction, a few hundred operations per node);
+//! beyond 2 circumscribing radii of each node, its exterior expansion
+//! ([`Polyhedron::field_expansion`]); otherwise its closed form. Each expansion is taken to the
+//! degree whose bound relative to $|\Phi|$ and $|\mathbf a|$ is $b$ at every node it serves.
+//! At node $k$ then $|\delta\Phi_k| \le b|\Phi_k|$ and $|\delta\mathbf a_k| \le b|\mathbf a_k|$,
+//! so each sum's truncation error is at most $b$ times the sum of the magnitudes of its terms:
+//! that is added to the estimate. $b$ is chosen so that this stays below 5 % of the tolerance.
+//! Near contact neither expansion is offered and the closed form is used.
 //!
 //! # Which surface
 //!
@@ -33,21 +39,32 @@
 //! field (the engine's rules with the polyhedron as a field-only body; the truncation bound is
 //! then added from the geometry: $\rho_X b\\,S_X\Phi\_{\max}$ for the force and the like, with
 //! $\Phi\_{\max} = GM/d\_{\min}$). The predicted cost of each is its node count times the cost
-//! of the field there (a polyhedron's: about $4.5\\,(N+2)^2$ ns by its expansion of degree $N$,
-//! 50 ns per face directly; an ellipsoid's 100 ns); the cheaper is taken.
+//! of the field there (a polyhedron's: about $5$ ns per term of its local expansion of degree
+//! $N$, $(N+1)(N+2)/2$ terms, plus $2$ ns per term pair of the translation shared by the
+//! nodes; $6.8\\,(N+2)^2$ ns by its exterior expansion; 50 ns per face directly; an
+//! ellipsoid's 100 ns); the cheapest field and then the cheaper surface are taken.
 //!
-//! # Performance (certified $10^{-10}$; example `polyhedron_pairs`, release, serial CPU time
-//! with `RAYON_NUM_THREADS=1` on a 2-core machine under load average 5.5)
+//! # Performance (certified $10^{-10}$; example `polyhedron_pairs`, release, CPU time with
+//! `RAYON_NUM_THREADS=1` on a 2-core machine under load average 8–10)
 //!
-//! | pair | surface (chosen) | evaluations | CPU | estimate | error vs $10^{-13}$ over the other surface |
-//! |---|---|---:|---:|---:|---:|
-//! | Didymos (1,996 faces) + ellipsoid, 1180 m | ellipsoid (auto) | 200 | 2.0 ms | 8.4e-12 | 3.9e-15 |
-//! | same | mesh | 49,902 | 11 ms | 8.0e-13 | 4.3e-15 |
-//! | KW4 Alpha (9,168) + Beta (2,292), 2540 m | Beta (auto) | 29,798 | 146 ms | 4.2e-11 | 6.0e-15 |
-//! | same | Alpha | 119,186 | 200 ms | 9.9e-11 | 7.0e-15 |
+//! | pair | surface (chosen) | Polyhedron field | evaluations | CPU | estimate | error vs $10^{-13}$ over the other surface |
+//! |---|---|---|---:|---:|---:|---:|
+//! | Didymos (1,996 faces) + ellipsoid, 1180 m | ellipsoid (auto) | local, $N = 18$, $P = 41$ | 170 | 0.9–1.2 ms (was 2.0) | 8.4e-12 | 1.2e-14 |
+//! | same | mesh | (ellipsoid's closed form) | 49,902 | 10 ms | 8.0e-13 | 4.3e-15 |
+//! | KW4 Alpha (9,168) + Beta (2,292), 2540 m | Beta (auto) | local, $N = 19$, $P = 34$ | 29,798 | 31–37 ms (was 139–146) | 4.1e-11 | 6.5e-15 |
+//! | same | Alpha | Beta's exterior expansion | 119,186 | 150–190 ms | 9.9e-11 | 7.0e-15 |
 //!
-//! $V$ over either surface agrees to 6e-16 (Didymos) and 6e-15 (KW4). The expansion of KW4
-//! Alpha at Beta's nodes (2.9 radii, degree ~33) costs 4.9 µs per node; the node loop runs in
+//! Error against cost with the automatic choice (`--work-precision`, same conditions):
+//!
+//! | tolerance | Didymos: evaluations, CPU, estimate, true | KW4: evaluations, CPU, estimate, true |
+//! |---|---|---|
+//! | 1e-4 | 82, 0.38 ms, 6.0e-6, 4.5e-10 | 11,462, 5.7 ms, 8.6e-6, 4.0e-11 |
+//! | 1e-6 | 82, 0.44 ms, 1.4e-7, 4.5e-10 | 29,798, 17 ms, 5.8e-9, 6.5e-15 |
+//! | 1e-8 | 122, 0.77 ms, 1.0e-9, 2.5e-12 | 29,798, 24 ms, 8.0e-11, 6.5e-15 |
+//! | 1e-10 | 170, 1.2 ms, 8.4e-12, 1.2e-14 | 29,798, 36 ms, 4.1e-11, 6.5e-15 |
+//! | 1e-12 | 226, 1.8 ms, 1.0e-13, 2.1e-15 | 57,302, 77 ms, 9.8e-15, 5.2e-15 |
+//!
+//! $V$ over either surface agrees to 1e-14 (Didymos) and 6e-15 (KW4). The node loop runs in
 //! parallel over chunks of faces. The first evaluation with a polyhedron field also builds its
 //! degree-60 moments (Didymos ~0.1 s, Alpha ~0.6 s).
 //!
