@@ -12,6 +12,10 @@ rows = list(csv.DictReader(open(results / "gubas.csv")))
 orders = sorted({int(r["order"]) for r in rows})
 
 
+def us(seconds):
+    return f"{float(seconds) * 1e6:.1f}"
+
+
 def sci(x):
     return f"{float(x):.1e}"
 
@@ -35,8 +39,10 @@ for name, e in exact.items():
         cells.append("<br>".join(cell) if cell else "—")
     print(f"| {name} | {e['certified']}, {sci(e['agreement'])} | " + " | ".join(cells) + " |")
 
-print("\n## Time per evaluation (force + both torques + energy), one core\n")
-print("| configuration | surfgrav µs (1e-12, evaluations) | "
+print("\n## Time per evaluation (force + both torques + energy), one thread\n")
+print("CPU time of the thread, best of several batches (wall time in parentheses: on a shared"
+      " machine it also counts the waits for a core).\n")
+print("| configuration | surfgrav µs (1e-12; evaluations) | "
       + " | ".join(f"GUBAS order {n} µs" for n in orders) + " |")
 print("|" + "---|" * (2 + len(orders)))
 for name, e in exact.items():
@@ -44,6 +50,7 @@ for name, e in exact.items():
     for n in orders:
         got = [r for r in rows if r["config"] == name and int(r["order"]) == n
                and r["integrals"] == "shipped"]
-        cells.append(f"{float(got[0]['gubas_seconds']) * 1e6:.1f}" if got else "—")
-    print(f"| {name} | {float(e['seconds']) * 1e6:.1f} ({e['evaluations']}) | "
+        cells.append(f"{us(got[0]['gubas_cpu_seconds'])} ({us(got[0]['gubas_seconds'])})"
+                     if got else "—")
+    print(f"| {name} | {us(e['cpu_seconds'])} ({us(e['seconds'])}); {e['evaluations']} | "
           + " | ".join(cells) + " |")

@@ -12,17 +12,18 @@
 //! - `agreement` is its difference from an independent reference (the fixed-rule ladder at 1e-13
 //!   over the *other* body's surface, polar-angle form), in the engine's error measure:
 //!   max(|δF|/|F|, |δV|/|V|, |δM|/max(|M|, |V|) for each torque);
-//! - `seconds` is the warm time of one evaluation of force + both torques + energy certified to
-//!   1e-12 (best of five batches, one thread: run with `RAYON_NUM_THREADS=1`), with its field
-//!   evaluations and error estimate.
+//! - `seconds` and `cpu_seconds` are the warm wall and CPU time of one evaluation of force +
+//!   both torques + energy certified to 1e-12, each the best of five batches of at least 20 ms
+//!   of this thread's CPU time (`/proc/thread-self/schedstat`, nanoseconds; on a shared machine
+//!   the CPU time is the one to read: wall time counts the waits for a core), one thread (run
+//!   with `RAYON_NUM_THREADS=1`), with the field evaluations and the error estimate.
 //!
 //! `RAYON_NUM_THREADS=1 cargo run --release -p surfgrav-surfaces --example gubas_compare > exact.csv`
 
 use std::path::PathBuf;
+use std::time::Instant;
 use surfgrav_potentials::{Ellipsoid, LengthUnit, Mesh, Polyhedron, Pose, Potential, Vec3};
-use surfgrav_surfaces::interaction::work_precision::{
-    independent_reference, interaction_error, measure,
-};
+use surfgrav_surfaces::interaction::work_precision::{independent_reference, interaction_error};
 use surfgrav_surfaces::interaction::{
     Body, Interaction, InteractionEngine, InteractionError, InteractionOptions,
 };
@@ -213,6 +214,34 @@ fn shape_columns(shape: Shape) -> Result<String, Box<dyn std::error::Error>> {
     })
 }
 
+/// CPU time of this thread in seconds (Linux: the first field of `/proc/thread-self/schedstat`
+/// is the time run, in nanoseconds); NaN where it cannot be read.
+fn thread_cpu_seconds() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(f64::NAN, |ns| ns * 1e-9)
+}
+
+/// Best wall and best CPU seconds per call over five batches of at least `batch` CPU seconds.
+fn time_per_call(batch: f64, mut f: impl FnMut()) -> (f64, f64) {
+    let (mut wall, mut cpu) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..5 {
+        let (t0, c0) = (Instant::now(), thread_cpu_seconds());
+        let mut calls = 0u32;
+        // Wall time bounds the batch where the CPU clock cannot be read.
+        while calls == 0
+            || !(thread_cpu_seconds() - c0 >= batch || t0.elapsed().as_secs_f64() >= 20.0 * batch)
+        {
+            f();
+            calls += 1;
+        }
+        wall = wall.min(t0.elapsed().as_secs_f64() / f64::from(calls));
+        cpu = cpu.min((thread_cpu_seconds() - c0) / f64::from(calls));
+    }
+    (wall, cpu)
+}
+
 fn engine_result(
     result: Result<Interaction, InteractionError>,
 ) -> Result<(Interaction, bool), InteractionError> {
@@ -231,7 +260,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .fold(f64::NEG_INFINITY, f64::max);
     println!(
         "config,kind_a,a1,a2,a3,mass_a,density_a,kind_b,b1,b2,b3,mass_b,density_b,px,py,pz,rx,ry,rz,g,\
-         fbx,fby,fbz,max,may,maz,mbx,mby,mbz,v,certified,agreement,seconds,evaluations,estimate"
+         fbx,fby,fbz,max,may,maz,mbx,mby,mbz,v,certified,agreement,seconds,cpu_seconds,evaluations,estimate"
     );
     for c in configurations(didymos_max_x) {
         let (a, b) = (body(c.a)?, body(c.b)?);
@@ -244,32 +273,29 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let (r, certified) = engine_result(exact.interact(&a, &pose_a, &b, &pose_b))?;
         let (independent, _) = independent_reference(&a, &pose_a, &b, &pose_b, 1e-13)?;
         let agreement = interaction_error(&r, &independent);
-        let timed = measure(
-            &a,
-            &pose_a,
-            &b,
-            &pose_b,
-            InteractionOptions {
-                relative_tolerance: 1e-12,
-                ..InteractionOptions::default()
-            },
-            None,
-            0.01,
-        )?;
-        let timed_error = interaction_error(&timed.interaction, &r);
+        let mut engine = InteractionEngine::new(InteractionOptions {
+            relative_tolerance: 1e-12,
+            ..InteractionOptions::default()
+        })?;
+        let (timed, timed_certified) = engine_result(engine.interact(&a, &pose_a, &b, &pose_b))?;
+        let (seconds, cpu_seconds) = time_per_call(0.02, || {
+            let _ = std::hint::black_box(engine.interact(&a, &pose_a, &b, &pose_b));
+        });
+        let timed_error = interaction_error(&timed, &r);
         eprintln!(
             "{}: |F| = {:.6e} N, V = {:.6e} J, certified 1e-13: {certified}, vs independent {agreement:.1e}; \
-             1e-12: {:.1} µs, {} evaluations, estimate {:.1e}, error {timed_error:.1e}",
+             1e-12 (certified: {timed_certified}): {:.1} µs CPU ({:.1} µs wall), {} evaluations, estimate {:.1e}, error {timed_error:.1e}",
             c.name,
             r.force_on_b.norm(),
             r.potential_energy,
-            timed.seconds * 1e6,
+            cpu_seconds * 1e6,
+            seconds * 1e6,
             timed.evaluations,
             timed.error_estimate,
         );
         let v3 = |v: &Vec3| format!("{:.17e},{:.17e},{:.17e}", v.x, v.y, v.z);
         println!(
-            "{},{},{},{},{},{G:e},{},{},{},{:.17e},{certified},{agreement:.3e},{:.4e},{},{:.3e}",
+            "{},{},{},{},{},{G:e},{},{},{},{:.17e},{certified},{agreement:.3e},{seconds:.4e},{cpu_seconds:.4e},{},{:.3e}",
             c.name,
             shape_columns(c.a)?,
             shape_columns(c.b)?,
@@ -279,7 +305,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             v3(&r.torque_on_a),
             v3(&r.torque_on_b),
             r.potential_energy,
-            timed.seconds,
             timed.evaluations,
             timed.error_estimate,
         );
