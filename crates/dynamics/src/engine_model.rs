@@ -60,10 +60,10 @@ use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
-use surfgrav_potentials::{InertiaTensor, Pose, Real, Vec3};
+use surfgrav_potentials::{InertiaTensor, Pose, Real, Symmetry as FieldSymmetry, Vec3};
 use surfgrav_surfaces::interaction::{
-    Body, BodyShape, Interaction, InteractionEngine, InteractionError as EngineError,
-    InteractionOptions, Request,
+    Body, Interaction, InteractionEngine, InteractionError as EngineError, InteractionOptions,
+    Request,
 };
 use thiserror::Error;
 
@@ -123,32 +123,24 @@ pub enum EngineModelError {
     Interpolant(#[from] InterpolantError),
 }
 
-/// Whether a body is spherically symmetric, axisymmetric about its body z axis (with its
-/// equatorial radius), or neither.
+/// Whether a body is spherically symmetric, axisymmetric about its body z axis, or neither,
+/// as its field reports it ([`Body::symmetry`], from [`surfgrav_potentials::Potential::symmetry`]):
+/// a user's potential that reports its symmetry gets the fast path as a built-in kind does.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Symmetry {
-    /// Point or sphere, with its radius (0 for a point).
-    Spherical(Real),
-    /// Spheroid or disk, with its equatorial radius.
-    Axial(Real),
+    /// Point, sphere, or any field reported spherically symmetric.
+    Spherical,
+    /// Spheroid, disk, or any field reported axisymmetric about body z (with the equatorial
+    /// mirror).
+    Axial,
     /// Anything else.
     None,
 }
 
 fn symmetry(body: &Body) -> Symmetry {
-    match body.shape() {
-        BodyShape::Point => Symmetry::Spherical(0.0),
-        BodyShape::Solid(e) => {
-            let (a, b, c) = (e.x_semi_axis(), e.y_semi_axis(), e.z_semi_axis());
-            if a == b && b == c {
-                Symmetry::Spherical(a)
-            } else if a == b {
-                Symmetry::Axial(a)
-            } else {
-                Symmetry::None
-            }
-        }
-        BodyShape::Disk(l) => Symmetry::Axial(l.radius()),
+    match body.symmetry() {
+        FieldSymmetry::Spherical => Symmetry::Spherical,
+        FieldSymmetry::Axisymmetric => Symmetry::Axial,
         _ => Symmetry::None,
     }
 }
@@ -245,7 +237,7 @@ impl EngineModel {
             (&self.body_a, &initial.body_a),
             (&self.body_b, &initial.body_b),
         ] {
-            if matches!(symmetry(body), Symmetry::Axial(_))
+            if matches!(symmetry(body), Symmetry::Axial)
                 && sine(&k, &state.angular_velocity) > ALIGNMENT_SINE
             {
                 return None;
@@ -350,8 +342,8 @@ impl EngineModel {
         let mut axis: Option<Vec3> = None;
         for (body, pose) in [(&self.body_a, pose_a), (&self.body_b, pose_b)] {
             match symmetry(body) {
-                Symmetry::Spherical(_) => {}
-                Symmetry::Axial(_) => {
+                Symmetry::Spherical => {}
+                Symmetry::Axial => {
                     let k = pose.rotation * Vec3::z();
                     match axis {
                         Some(existing) if sine(&existing, &k) > ALIGNMENT_SINE => return None,
@@ -365,12 +357,10 @@ impl EngineModel {
         Some(axis)
     }
 
-    /// Equatorial radius (radius for a sphere, 0 for a point), when the body has one.
+    /// Equatorial radius (radius for a sphere, 0 for a point), when the body has one
+    /// ([`Body::equatorial_radius`]).
     fn equatorial_radius(body: &Body) -> Option<Real> {
-        match symmetry(body) {
-            Symmetry::Spherical(r) | Symmetry::Axial(r) => Some(r),
-            Symmetry::None => None,
-        }
+        body.equatorial_radius()
     }
 }
 

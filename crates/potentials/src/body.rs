@@ -1,4 +1,4 @@
-use crate::{Real, Vec3};
+use crate::{Ellipsoid, PointMass, Polyhedron, Real, Sphere, Spheroid, UniformDisk, Vec3};
 use nalgebra::UnitQuaternion;
 
 /// Potential and acceleration at one point, computed together (they share the expensive part:
@@ -20,6 +20,103 @@ pub enum Region {
     OnSurface,
     /// Outside.
     Outside,
+}
+
+/// The symmetries of a body's field (and, for a homogeneous body, of its matter) in its body
+/// frame, centroid at the origin. An engine uses them to halve or quarter its nodes and to
+/// recognise central pairs; a field reports only what holds exactly (to rounding).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum Symmetry {
+    /// None known (the default for a user's potential).
+    #[default]
+    None,
+    /// Mirror-symmetric about the three body coordinate planes (a triaxial ellipsoid).
+    CoordinatePlanes,
+    /// A body of revolution about the body $z$ axis that is also mirror-symmetric about the
+    /// $x$–$y$ plane (a spheroid, a disk): symmetric about every plane containing $z$.
+    Axisymmetric,
+    /// Symmetric about every plane through the centroid (a point mass, a sphere).
+    Spherical,
+}
+
+/// What kind of body a potential is: one of the closed-form kinds of this crate, or
+/// [`TypedPotential::Custom`] for anything else. Fast paths match on it (a closed form for a
+/// pair, a monomorphised loop); everything else goes through the [`Potential`] trait, so a
+/// user's type works wherever a built-in one does, only without the kind-specific shortcuts
+/// it does not declare.
+#[derive(Debug, Clone, Copy)]
+#[non_exhaustive]
+pub enum TypedPotential<'a> {
+    /// A point mass.
+    PointMass(&'a PointMass),
+    /// A homogeneous sphere.
+    Sphere(&'a Sphere),
+    /// A homogeneous spheroid (symmetry axis $z$).
+    Spheroid(&'a Spheroid),
+    /// A homogeneous triaxial ellipsoid.
+    Ellipsoid(&'a Ellipsoid),
+    /// A uniform disk in the $x$–$y$ plane.
+    Disk(&'a UniformDisk),
+    /// A homogeneous polyhedron.
+    Polyhedron(&'a Polyhedron),
+    /// Any other potential: only its trait methods are known.
+    Custom,
+}
+
+impl TypedPotential<'_> {
+    /// The field's symmetry for this kind ([`Symmetry::None`] for a custom potential).
+    pub fn symmetry(&self) -> Symmetry {
+        match self {
+            Self::PointMass(_) | Self::Sphere(_) => Symmetry::Spherical,
+            Self::Spheroid(_) | Self::Disk(_) => Symmetry::Axisymmetric,
+            Self::Ellipsoid(e) => {
+                let [a, b, c] = e.semi_axes();
+                if a == b && b == c {
+                    Symmetry::Spherical
+                } else if a == b {
+                    Symmetry::Axisymmetric
+                } else {
+                    Symmetry::CoordinatePlanes
+                }
+            }
+            Self::Polyhedron(_) | Self::Custom => Symmetry::None,
+        }
+    }
+
+    /// Radius of the set where the exterior potential, continued into the body, is singular
+    /// (its focal set: $\sqrt{a\_{\max}^2 - a\_{\min}^2}$ for an ellipsoid, 0 for a point or a
+    /// sphere, the radius for a disk); `None` when unknown (a polyhedron, a custom potential).
+    pub fn singular_radius(&self) -> Option<Real> {
+        let focal = |mut s: [Real; 3]| {
+            s.sort_by(Real::total_cmp);
+            ((s[2] - s[0]) * (s[2] + s[0])).sqrt()
+        };
+        match self {
+            Self::PointMass(_) | Self::Sphere(_) => Some(0.0),
+            Self::Spheroid(s) => Some(focal([
+                s.equatorial_radius(),
+                s.equatorial_radius(),
+                s.polar_radius(),
+            ])),
+            Self::Ellipsoid(e) => Some(focal(e.semi_axes())),
+            Self::Disk(d) => Some(d.radius()),
+            Self::Polyhedron(_) | Self::Custom => None,
+        }
+    }
+
+    /// The cost of one field evaluation relative to a spheroid's (measured on the engine's
+    /// node loop: a point or a sphere 0.2, a spheroid 1, a triaxial ellipsoid 3, a disk 3.5);
+    /// 1 for kinds not measured (a polyhedron, whose cost grows with its faces, goes to the
+    /// engine's mesh rules instead) and for a custom potential.
+    pub fn field_cost(&self) -> Real {
+        match self {
+            Self::PointMass(_) | Self::Sphere(_) => 0.2,
+            Self::Spheroid(_) | Self::Polyhedron(_) | Self::Custom => 1.0,
+            Self::Ellipsoid(_) => 3.0,
+            Self::Disk(_) => 3.5,
+        }
+    }
 }
 
 /// The field of a body, evaluated in the body's own frame.
@@ -77,6 +174,36 @@ pub trait Potential: std::fmt::Debug + Send + Sync {
     /// G times the mass, the gravitational parameter μ.
     fn gravitational_parameter(&self) -> Real {
         self.gravitational_constant() * self.mass()
+    }
+
+    /// The typed view: which closed-form kind this is, [`TypedPotential::Custom`] (the
+    /// default) for any other. A wrapper around a built-in kind should stay `Custom` and report
+    /// the kind's properties through [`Self::symmetry`], [`Self::singular_radius`] and
+    /// [`Self::field_cost`] instead: a typed view promises that the value *is* that kind.
+    fn as_typed(&self) -> TypedPotential<'_> {
+        TypedPotential::Custom
+    }
+
+    /// The field's symmetries in the body frame (by default the typed view's:
+    /// [`Symmetry::None`] for a custom potential). Report only what holds to rounding: an
+    /// engine evaluates half or a quarter of its nodes on the strength of it.
+    fn symmetry(&self) -> Symmetry {
+        self.as_typed().symmetry()
+    }
+
+    /// Radius of the set where the exterior potential, continued into the body, is singular
+    /// (by default the typed view's; `None`: unknown, an engine then assumes the bounding
+    /// radius). The convergence of a surface integral in this field depends on the distance
+    /// to that set, so a small true radius lets an engine predict a cheaper rule.
+    fn singular_radius(&self) -> Option<Real> {
+        self.as_typed().singular_radius()
+    }
+
+    /// The cost of one [`Self::field`] evaluation relative to a homogeneous spheroid's (by
+    /// default the typed view's; 1 for a custom potential). An engine uses it to choose which
+    /// body's surface to integrate over.
+    fn field_cost(&self) -> Real {
+        self.as_typed().field_cost()
     }
 }
 

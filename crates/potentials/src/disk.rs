@@ -311,6 +311,10 @@ impl UniformDisk {
 }
 
 impl Potential for UniformDisk {
+    fn as_typed(&self) -> crate::TypedPotential<'_> {
+        crate::TypedPotential::Disk(self)
+    }
+
     fn inertia(&self) -> Option<crate::InertiaTensor> {
         crate::InertiaTensor::uniform_disk(self.mass(), self.radius()).ok()
     }

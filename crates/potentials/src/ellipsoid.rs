@@ -267,6 +267,10 @@ pub(crate) fn nearest_power_of_two(v: Real) -> Real {
 }
 
 impl Potential for Ellipsoid {
+    fn as_typed(&self) -> crate::TypedPotential<'_> {
+        crate::TypedPotential::Ellipsoid(self)
+    }
+
     fn inertia(&self) -> Option<crate::InertiaTensor> {
         let [a, b, c] = self.semi_axes();
         crate::InertiaTensor::solid_ellipsoid(self.mass(), a, b, c).ok()

@@ -43,7 +43,7 @@ pub mod sphere;
 pub mod spheroid;
 pub mod tolerance;
 
-pub use body::{Field, Pose, Potential, Region};
+pub use body::{Field, Pose, Potential, Region, Symmetry, TypedPotential};
 pub use disk::*;
 pub use disk_pair::*;
 pub use ellipsoid::*;

@@ -43,6 +43,10 @@ impl PointMass {
 }
 
 impl Potential for PointMass {
+    fn as_typed(&self) -> crate::TypedPotential<'_> {
+        crate::TypedPotential::PointMass(self)
+    }
+
     fn mass(&self) -> Real {
         self.mass
     }

@@ -468,6 +468,10 @@ fn edge_log(a: &[Real; 4], b: &[Real; 4], length: Real) -> Real {
 }
 
 impl Potential for Polyhedron {
+    fn as_typed(&self) -> crate::TypedPotential<'_> {
+        crate::TypedPotential::Polyhedron(self)
+    }
+
     fn mass(&self) -> Real {
         self.mass
     }

@@ -88,6 +88,10 @@ impl Sphere {
 }
 
 impl Potential for Sphere {
+    fn as_typed(&self) -> crate::TypedPotential<'_> {
+        crate::TypedPotential::Sphere(self)
+    }
+
     fn inertia(&self) -> Option<crate::InertiaTensor> {
         let r = self.radius();
         crate::InertiaTensor::solid_ellipsoid(self.mass(), r, r, r).ok()

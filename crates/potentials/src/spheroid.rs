@@ -435,6 +435,10 @@ fn estrin32(x: Real) -> Real {
 }
 
 impl Potential for Spheroid {
+    fn as_typed(&self) -> crate::TypedPotential<'_> {
+        crate::TypedPotential::Spheroid(self)
+    }
+
     fn inertia(&self) -> Option<crate::InertiaTensor> {
         let (a, c) = (self.equatorial_radius(), self.polar_radius());
         crate::InertiaTensor::solid_ellipsoid(self.mass(), a, a, c).ok()

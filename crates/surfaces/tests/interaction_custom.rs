@@ -5,7 +5,9 @@ mod interaction_support;
 
 use interaction_support::*;
 use std::sync::Arc;
-use surfgrav_potentials::{Ellipsoid as SolidEllipsoid, Pose, Potential, Spheroid, UniformDisk};
+use surfgrav_potentials::{
+    Ellipsoid as SolidEllipsoid, Pose, Potential, Spheroid, Symmetry, TypedPotential, UniformDisk,
+};
 use surfgrav_surfaces::interaction::{
     interact, Body, BodyShape, InteractionError, MethodChoice, SurfaceChoice,
 };
@@ -102,4 +104,188 @@ fn custom_bodies_need_a_sensible_shape() {
         ),
         Err(InteractionError::NoSurface { .. })
     ));
+}
+
+/// A user's potential: a built-in field behind a wrapper type the engine does not know
+/// (`as_typed` is `Custom`), reporting the field's symmetry, singular radius and cost when
+/// `report` is set, nothing otherwise.
+#[derive(Debug)]
+struct Wrapped<P> {
+    inner: P,
+    report: bool,
+}
+
+impl<P: Potential> Potential for Wrapped<P> {
+    fn mass(&self) -> f64 {
+        self.inner.mass()
+    }
+    fn gravitational_constant(&self) -> f64 {
+        self.inner.gravitational_constant()
+    }
+    fn volume(&self) -> f64 {
+        self.inner.volume()
+    }
+    fn bounding_radius(&self) -> f64 {
+        self.inner.bounding_radius()
+    }
+    fn region(&self, r: &surfgrav_potentials::Vec3) -> surfgrav_potentials::Region {
+        self.inner.region(r)
+    }
+    fn field(&self, r: &surfgrav_potentials::Vec3) -> surfgrav_potentials::Field {
+        self.inner.field(r)
+    }
+    fn potential(&self, r: &surfgrav_potentials::Vec3) -> f64 {
+        self.inner.potential(r)
+    }
+    fn inertia(&self) -> Option<surfgrav_potentials::InertiaTensor> {
+        self.inner.inertia()
+    }
+    fn symmetry(&self) -> Symmetry {
+        if self.report {
+            self.inner.symmetry()
+        } else {
+            Symmetry::None
+        }
+    }
+    fn singular_radius(&self) -> Option<f64> {
+        self.report.then(|| self.inner.singular_radius()).flatten()
+    }
+    fn field_cost(&self) -> f64 {
+        if self.report {
+            self.inner.field_cost()
+        } else {
+            1.0
+        }
+    }
+}
+
+/// The spheroid of [`paper_spheroid`] as a custom body, reporting its properties or not.
+fn wrapped_spheroid(report: bool) -> Body {
+    let inner = Spheroid::new(1.0, 0.25, 1.0).unwrap();
+    let surface = EllipsoidSurface::spheroid(1.0, 0.25).unwrap();
+    Body::custom(
+        Arc::new(Wrapped { inner, report }),
+        BodyShape::Solid(surface),
+    )
+    .unwrap()
+}
+
+/// A custom potential that reports its symmetry, singular radius and cost gets the built-in
+/// spheroid's fast paths: the same surface, method, evaluation count and level, and, since
+/// the field values are the same numbers (through `dyn Potential` instead of a monomorphised
+/// loop) summed in the same order, the same result bit for bit. Poses: the founding paper's
+/// coplanar pair (both mirror symmetries: quartered tables), a pair lifted out of the plane
+/// (one mirror plane) and a general pose (none); the partner is a built-in spheroid or an
+/// ellipsoid; the ladder, the nested rule and the adaptive rule.
+#[test]
+fn a_custom_potential_that_reports_its_kind_gets_the_built_in_fast_paths() {
+    let builtin = paper_spheroid();
+    let custom = wrapped_spheroid(true);
+    assert_eq!(custom.symmetry(), builtin.symmetry());
+    assert_eq!(custom.symmetry(), Symmetry::Axisymmetric);
+    assert_eq!(custom.singular_radius(), builtin.singular_radius());
+    assert!(matches!(custom.typed(), TypedPotential::Custom));
+    assert!(matches!(builtin.typed(), TypedPotential::Spheroid(_)));
+    let partners = [
+        paper_spheroid(),
+        Body::ellipsoid(SolidEllipsoid::new(0.9, 0.6, 0.3, 0.7).unwrap()).unwrap(),
+    ];
+    let poses = [
+        pose([2.3, 0.0, 0.0], [0.0; 3]),
+        pose([2.2, 0.0, 0.6], [0.0; 3]),
+        pose([1.9, 1.1, 0.5], [0.3, -0.2, 0.4]),
+    ];
+    let methods = [
+        (MethodChoice::Automatic, 1e-12),
+        (MethodChoice::Nested, 1e-12),
+        (MethodChoice::Adaptive, 1e-8),
+    ];
+    let mut quartered = 0;
+    for partner in &partners {
+        for pose_b in &poses {
+            for (method, tolerance) in methods {
+                for builtin_is_a in [true, false] {
+                    let order = |own: &'static str| -> [&Body; 2] {
+                        let body = if own == "custom" { &custom } else { &builtin };
+                        if builtin_is_a {
+                            [body, partner]
+                        } else {
+                            [partner, body]
+                        }
+                    };
+                    let ([a, b], [ca, cb]) = (order("builtin"), order("custom"));
+                    let options = options(tolerance, method, SurfaceChoice::Automatic);
+                    let expected = engine(options)
+                        .interact(a, &Pose::identity(), b, pose_b)
+                        .unwrap();
+                    let got = engine(options)
+                        .interact(ca, &Pose::identity(), cb, pose_b)
+                        .unwrap();
+                    let case = format!("{method:?} {pose_b:?}");
+                    assert_eq!(got.method, expected.method, "{case}");
+                    assert_eq!(got.integrated_over, expected.integrated_over, "{case}");
+                    assert_eq!(got.evaluations, expected.evaluations, "{case}");
+                    assert_eq!(got.level, expected.level, "{case}");
+                    assert_eq!(got.force_on_a, expected.force_on_a, "{case}");
+                    assert_eq!(got.torque_on_a, expected.torque_on_a, "{case}");
+                    assert_eq!(got.torque_on_b, expected.torque_on_b, "{case}");
+                    assert_eq!(got.potential_energy, expected.potential_energy, "{case}");
+                    assert_eq!(got.error_estimate, expected.error_estimate, "{case}");
+                    // Without the reported symmetry the coplanar pair costs 4 times more.
+                    let silent = engine(options)
+                        .interact(&wrapped_spheroid(false), &Pose::identity(), partner, pose_b)
+                        .unwrap();
+                    if silent.evaluations > expected.evaluations {
+                        quartered += 1;
+                    }
+                }
+            }
+        }
+    }
+    // The symmetric poses (two of three) save evaluations under every method and partner
+    // order where the custom body's field is the one integrated in.
+    assert!(quartered > 0, "no case used the reported symmetry");
+}
+
+/// A custom potential that reports nothing still works, by the generic path: no mirror
+/// halving, the bounding radius as its singular radius, a spheroid's cost. Its results agree
+/// with the built-in spheroid's within the two error estimates, and it never spends fewer
+/// evaluations than the built-in body's fast path on the symmetric coplanar pair.
+#[test]
+fn a_custom_potential_that_reports_nothing_takes_the_generic_path() {
+    let builtin = paper_spheroid();
+    let silent = wrapped_spheroid(false);
+    assert_eq!(silent.symmetry(), Symmetry::None);
+    assert_eq!(silent.singular_radius(), builtin.singular_radius());
+    let partner = paper_spheroid();
+    for pose_b in [
+        pose([2.3, 0.0, 0.0], [0.0; 3]),
+        pose([1.9, 1.1, 0.5], [0.3, -0.2, 0.4]),
+    ] {
+        for surface in [SurfaceChoice::A, SurfaceChoice::B] {
+            let options = options(1e-12, MethodChoice::Automatic, surface);
+            let expected = engine(options)
+                .interact(&builtin, &Pose::identity(), &partner, &pose_b)
+                .unwrap();
+            let got = engine(options)
+                .interact(&silent, &Pose::identity(), &partner, &pose_b)
+                .unwrap();
+            let err = errors(&got, &expected).max();
+            assert!(
+                err <= got.error_estimate + expected.error_estimate,
+                "{surface:?} {pose_b:?}: {err:e}"
+            );
+            assert!(got.evaluations >= expected.evaluations);
+        }
+    }
+    // The silent body's field is integrated in without mirror halving.
+    let coplanar = pose([2.3, 0.0, 0.0], [0.0; 3]);
+    let options = options(1e-12, MethodChoice::FixedRules, SurfaceChoice::B);
+    let fast = engine(options)
+        .interact(&builtin, &Pose::identity(), &partner, &coplanar)
+        .unwrap();
+    let slow = engine(options)
+        .interact(&silent, &Pose::identity(), &partner, &coplanar)
+        .unwrap();
+    assert!(slow.evaluations > fast.evaluations);
 }

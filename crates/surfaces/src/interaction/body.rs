@@ -10,7 +10,7 @@ use std::sync::{Arc, Mutex};
 use surfgrav_potentials as potentials;
 use surfgrav_potentials::{
     InertiaError, InertiaTensor, Mat3, Mesh, PointMass, Polyhedron, Potential, Sphere, Spheroid,
-    UniformDisk,
+    Symmetry, TypedPotential, UniformDisk,
 };
 
 /// The geometry of a body for the engine: what can be integrated over, and what its overlap
@@ -67,41 +67,27 @@ macro_rules! with_field {
 }
 pub(crate) use with_field;
 
-/// Reflection symmetries of a body's field about planes through its centroid.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum FieldSymmetry {
-    /// Unknown (a user-defined potential).
-    None,
-    /// Mirror-symmetric about the three body coordinate planes (a triaxial ellipsoid).
-    CoordinatePlanes,
-    /// Symmetric about every plane containing the body z axis and about the x–y plane.
-    Axial,
-    /// Symmetric about every plane through the centroid.
-    Spherical,
-}
-
 /// Directions closer than this (in sine of the angle, or relative offset) are treated as
 /// exactly aligned: a few rounding errors of a rotation. A symmetry is exploited only when it
 /// holds to rounding, so it never costs accuracy.
 pub(crate) const ALIGNMENT: Real = 8.0 * Real::EPSILON;
 
-impl FieldSymmetry {
-    /// Whether the field is unchanged by the reflection through the plane with unit normal
-    /// `normal` (body frame) through the centroid.
-    pub(crate) fn mirrors(self, normal: &Vec3) -> bool {
-        let along = |i: usize| {
-            let off: Real = (0..3)
-                .filter(|&j| j != i)
-                .map(|j| normal[j] * normal[j])
-                .sum();
-            off.sqrt() <= ALIGNMENT
-        };
-        match self {
-            FieldSymmetry::None => false,
-            FieldSymmetry::Spherical => true,
-            FieldSymmetry::Axial => normal.z.abs() <= ALIGNMENT || along(2),
-            FieldSymmetry::CoordinatePlanes => along(0) || along(1) || along(2),
-        }
+/// Whether a field of this symmetry is unchanged by the reflection through the plane with
+/// unit normal `normal` (body frame) through the centroid.
+pub(crate) fn mirrors(symmetry: Symmetry, normal: &Vec3) -> bool {
+    let along = |i: usize| {
+        let off: Real = (0..3)
+            .filter(|&j| j != i)
+            .map(|j| normal[j] * normal[j])
+            .sum();
+        off.sqrt() <= ALIGNMENT
+    };
+    match symmetry {
+        Symmetry::Spherical => true,
+        Symmetry::Axisymmetric => normal.z.abs() <= ALIGNMENT || along(2),
+        Symmetry::CoordinatePlanes => along(0) || along(1) || along(2),
+        // None, and kinds added later: nothing assumed.
+        _ => false,
     }
 }
 
@@ -115,7 +101,7 @@ impl FieldSymmetry {
 pub struct Body {
     pub(crate) field: SourceField,
     pub(crate) shape: BodyShape,
-    pub(crate) symmetry: FieldSymmetry,
+    pub(crate) symmetry: Symmetry,
     pub(crate) density: Real,
     pub(crate) bounding_radius: Real,
     inertia: Option<InertiaTensor>,
@@ -158,14 +144,10 @@ impl Clone for Body {
 const MAX_CACHED_TABLES: usize = 64;
 
 impl Body {
-    fn assemble(
-        field: SourceField,
-        shape: BodyShape,
-        symmetry: FieldSymmetry,
-    ) -> Result<Self, InteractionError> {
-        let (mass, potential_radius, inertia) = {
+    fn assemble(field: SourceField, shape: BodyShape) -> Result<Self, InteractionError> {
+        let (mass, potential_radius, inertia, symmetry) = {
             let p = field_ref(&field);
-            (p.mass(), p.bounding_radius(), p.inertia())
+            (p.mass(), p.bounding_radius(), p.inertia(), p.symmetry())
         };
         let (density, shape_radius) = match &shape {
             BodyShape::Point | BodyShape::FieldOnly => (Real::NAN, 0.0),
@@ -203,7 +185,7 @@ impl Body {
         Self {
             field: SourceField::PointMass(body),
             shape: BodyShape::Point,
-            symmetry: FieldSymmetry::Spherical,
+            symmetry: Symmetry::Spherical,
             density: Real::NAN,
             bounding_radius: 0.0,
             inertia: None,
@@ -215,7 +197,7 @@ impl Body {
     /// A homogeneous sphere.
     pub fn sphere(body: Sphere) -> Result<Self, InteractionError> {
         let shape = BodyShape::Solid(EllipsoidSurface::sphere(body.radius())?);
-        Self::assemble(SourceField::Sphere(body), shape, FieldSymmetry::Spherical)
+        Self::assemble(SourceField::Sphere(body), shape)
     }
 
     /// A homogeneous spheroid (symmetry axis z).
@@ -224,27 +206,20 @@ impl Body {
             body.equatorial_radius(),
             body.polar_radius(),
         )?);
-        Self::assemble(SourceField::Spheroid(body), shape, FieldSymmetry::Axial)
+        Self::assemble(SourceField::Spheroid(body), shape)
     }
 
     /// A homogeneous triaxial ellipsoid (semi-axes along x, y, z).
     pub fn ellipsoid(body: potentials::Ellipsoid) -> Result<Self, InteractionError> {
         let [a, b, c] = body.semi_axes();
         let shape = BodyShape::Solid(EllipsoidSurface::new(a, b, c)?);
-        let symmetry = if a == b && b == c {
-            FieldSymmetry::Spherical
-        } else if a == b {
-            FieldSymmetry::Axial
-        } else {
-            FieldSymmetry::CoordinatePlanes
-        };
-        Self::assemble(SourceField::Ellipsoid(body), shape, symmetry)
+        Self::assemble(SourceField::Ellipsoid(body), shape)
     }
 
     /// A uniform disk (lamina in the body x–y plane).
     pub fn disk(body: UniformDisk) -> Result<Self, InteractionError> {
         let shape = BodyShape::Disk(Lamina::new(body.radius())?);
-        Self::assemble(SourceField::Disk(body), shape, FieldSymmetry::Axial)
+        Self::assemble(SourceField::Disk(body), shape)
     }
 
     /// A homogeneous polyhedron, integrated over as its triangle mesh and acting by its
@@ -278,7 +253,6 @@ impl Body {
         let mut out = Self::assemble(
             SourceField::Custom(body.clone()),
             BodyShape::Mesh(Arc::new(mesh)),
-            FieldSymmetry::None,
         )?;
         out.polyhedron = Some(body);
         Ok(out)
@@ -299,12 +273,16 @@ impl Body {
     /// Each evaluation calls the potential through dynamic dispatch, once per node (a few
     /// nanoseconds next to tens for a closed-form field); the generic
     /// [`integrate_over_solid`](super::integrate_over_solid) gives a monomorphised loop for a
-    /// user's own type. No symmetry of the field is assumed.
+    /// user's own type. What the potential reports about itself decides the fast paths, as
+    /// for the built-in kinds: its [`Potential::symmetry`] (mirror halving of the nodes, the
+    /// point formula when [`Symmetry::Spherical`]), [`Potential::singular_radius`] (the start
+    /// resolution and the surface choice) and [`Potential::field_cost`] (the surface choice);
+    /// by default nothing is assumed (no symmetry, the bounding radius, the cost of a spheroid).
     pub fn custom(
         potential: Arc<dyn Potential>,
         shape: BodyShape,
     ) -> Result<Self, InteractionError> {
-        Self::assemble(SourceField::Custom(potential), shape, FieldSymmetry::None)
+        Self::assemble(SourceField::Custom(potential), shape)
     }
 
     /// The same body with the inertia tensor `tensor` (body frame, about the centroid; units
@@ -363,16 +341,66 @@ impl Body {
         )
     }
 
-    /// Whether the body's matter is spherically symmetric (point mass or sphere), so that its
-    /// interaction with any body outside it is that of a point mass.
+    /// Whether the body's matter is spherically symmetric (a point mass, a sphere, or a field
+    /// that reports [`Symmetry::Spherical`]), so that its interaction with any body outside it
+    /// is that of a point mass.
     pub fn is_spherically_symmetric(&self) -> bool {
-        match &self.shape {
+        let by_shape = match &self.shape {
             BodyShape::Point => true,
             BodyShape::Solid(e) => {
                 let [a, b, c] = [e.x_semi_axis(), e.y_semi_axis(), e.z_semi_axis()];
                 a == b && b == c
             }
             _ => false,
+        };
+        by_shape || self.symmetry == Symmetry::Spherical
+    }
+
+    /// The typed view of the body's field ([`Potential::as_typed`]): a built-in kind, or
+    /// [`TypedPotential::Custom`].
+    pub fn typed(&self) -> TypedPotential<'_> {
+        self.potential().as_typed()
+    }
+
+    /// The symmetry of the body's field, as its potential reports it ([`Potential::symmetry`]).
+    pub fn symmetry(&self) -> Symmetry {
+        self.symmetry
+    }
+
+    /// Radius of the set where the body's exterior potential, continued inward, is singular:
+    /// the potential's own report ([`Potential::singular_radius`]), else the focal set of the
+    /// body's ellipsoid or disk shape (the shape describes the homogeneous matter that makes
+    /// the field), else the bounding radius.
+    pub fn singular_radius(&self) -> Real {
+        if let Some(radius) = self.potential().singular_radius() {
+            return radius;
+        }
+        match &self.shape {
+            BodyShape::Point => 0.0,
+            BodyShape::Solid(e) => {
+                let mut s = [e.x_semi_axis(), e.y_semi_axis(), e.z_semi_axis()];
+                s.sort_by(Real::total_cmp);
+                ((s[2] - s[0]) * (s[2] + s[0])).sqrt()
+            }
+            BodyShape::Disk(l) => l.radius(),
+            BodyShape::Surface(_) | BodyShape::FieldOnly | BodyShape::Mesh(_) => {
+                self.bounding_radius
+            }
+        }
+    }
+
+    /// The radius of the body's equator when its field is axisymmetric or spherical and its
+    /// shape is known (a point 0, an ellipsoid its $x$ semi-axis, a disk its radius): two such
+    /// bodies with parallel axes touch edge to edge at the sum. `None` otherwise.
+    pub fn equatorial_radius(&self) -> Option<Real> {
+        if !matches!(self.symmetry, Symmetry::Axisymmetric | Symmetry::Spherical) {
+            return None;
+        }
+        match &self.shape {
+            BodyShape::Point => Some(0.0),
+            BodyShape::Solid(e) if e.x_semi_axis() == e.y_semi_axis() => Some(e.x_semi_axis()),
+            BodyShape::Disk(l) => Some(l.radius()),
+            _ => None,
         }
     }
 

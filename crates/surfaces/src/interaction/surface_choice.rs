@@ -4,7 +4,7 @@
 //! of each choice ([`predicted_cost`]; see the [module docs](super), "Which surface").
 
 use super::aimed;
-use super::body::{Body, BodyShape, SourceField, ALIGNMENT};
+use super::body::{mirrors, Body, BodyShape, ALIGNMENT};
 use super::error::{InteractionError, Side};
 use super::kernel::FrameMap;
 use super::options::{InteractionOptions, MethodChoice, SurfaceChoice};
@@ -102,21 +102,6 @@ impl Placement {
         Self { aim, ..self }
     }
 }
-/// Radius of the set where a body's exterior potential, continued inward, is singular: its
-/// focal set (0 for spheres and points, the disk itself for a disk).
-pub(crate) fn singular_radius(body: &Body) -> Real {
-    match body.shape() {
-        BodyShape::Point => 0.0,
-        BodyShape::Solid(e) => {
-            let mut s = [e.x_semi_axis(), e.y_semi_axis(), e.z_semi_axis()];
-            s.sort_by(Real::total_cmp);
-            ((s[2] - s[0]) * (s[2] + s[0])).sqrt()
-        }
-        BodyShape::Disk(l) => l.radius(),
-        BodyShape::Surface(_) | BodyShape::FieldOnly | BodyShape::Mesh(_) => body.bounding_radius(),
-    }
-}
-
 /// The integration surface: the one forced by the options, the only one there is, or the
 /// one with the lower predicted cost ([`predicted_cost`]); ties go to A.
 #[allow(clippy::type_complexity)]
@@ -191,19 +176,14 @@ pub(crate) fn predicted_cost(
     placement: &Placement,
     y: &Body,
 ) -> Real {
-    let field_cost = match &y.field {
-        SourceField::PointMass(_) | SourceField::Sphere(_) => 0.2,
-        SourceField::Spheroid(_) | SourceField::Custom(_) => 1.0,
-        SourceField::Ellipsoid(_) => 3.0,
-        SourceField::Disk(_) => 3.5,
-    };
+    let field_cost = y.potential().field_cost();
     if let Some(aim) = &placement.aim {
         // Near a disk's rim (a singular curve running past the pole) the aimed rule
         // converges far more slowly than its point model predicts: measured on the
         // random-pose set (`pose_benchmark`, seed 12, gaps 0.05 to 1), the spheroid or
         // ellipsoid beside a disk took 1.3 to 8 times the time of the disk's own lamina
         // rule in five cases of six.
-        let rim = if matches!(y.field, SourceField::Disk(_)) && aim.cluster > 0 {
+        let rim = if matches!(y.shape(), BodyShape::Disk(_)) && aim.cluster > 0 {
             AIMED_DISK_PENALTY
         } else {
             1.0
@@ -253,12 +233,12 @@ pub(crate) fn place(
     let use_symmetry = options.exploit_symmetry && symmetric_tables;
     let mirror = |axis: usize| {
         let normal = map.rotation.column(axis).into_owned();
-        q[axis].abs() <= ALIGNMENT * distance && y.symmetry.mirrors(&normal)
+        q[axis].abs() <= ALIGNMENT * distance && mirrors(y.symmetry(), &normal)
     };
     let half_azimuth = use_symmetry && mirror(1);
     let half_transverse = use_symmetry && matches!(x.shape(), BodyShape::Solid(_)) && mirror(2);
     let gap_ratio =
-        ((distance - x.bounding_radius() - singular_radius(y)) / x.bounding_radius()).max(1e-3);
+        ((distance - x.bounding_radius() - y.singular_radius()) / x.bounding_radius()).max(1e-3);
     let sin_elevation = if distance > 0.0 { q.z / distance } else { 1.0 };
     let clustering = if options.cluster_azimuth && axisymmetric {
         // Measured best strength for a body in the equatorial plane, faded out with the
