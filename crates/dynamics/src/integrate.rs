@@ -54,9 +54,7 @@ use crate::interpolate::{
 use crate::model::{InteractionError, InteractionModel};
 use crate::rigid;
 use crate::state::{Sample, TwoBodyState};
-use crate::tableau::{
-    ErrorWeights, Tableau, DOP853, DOP853_D, DOP853_DENSE_A, DORMAND_PRINCE_54, MAX_STAGES,
-};
+use crate::tableau::{Tableau, DOP853, DOP853_D, DOP853_DENSE_A, DORMAND_PRINCE_54, MAX_STAGES};
 use surfgrav_potentials::{Pose, Real, Vec3};
 use thiserror::Error;
 
@@ -1292,8 +1290,6 @@ impl Adaptive {
         h: Real,
     ) -> Real {
         let stages = tableau.stages();
-        let b = tableau.b();
-        let weight = |w: &[Real], i: usize| w.get(i).copied().unwrap_or(0.0);
         // Σ over the 12 components of (h Σ_i w_i k_i / scale)².
         let squares = |w: &dyn Fn(usize) -> Real| -> Real {
             let mut sum = 0.0;
@@ -1313,22 +1309,7 @@ impl Adaptive {
             }
             sum
         };
-        match tableau.error {
-            ErrorWeights::Lower(lower) => {
-                (squares(&|i| weight(b, i) - weight(lower, i)) / 12.0).sqrt()
-            }
-            ErrorWeights::Combined { fifth, third } => {
-                let e5 = squares(&|i| weight(fifth, i));
-                let e3 = squares(&|i| weight(b, i) - weight(third, i));
-                let denominator = e5 + 0.01 * e3;
-                if denominator == 0.0 {
-                    0.0
-                } else {
-                    // NaN or infinity propagate to the caller's finiteness check.
-                    e5 / (12.0 * denominator).sqrt()
-                }
-            }
-        }
+        tableau.error_norm(12, squares)
     }
 
     /// DOP853's continuous extension over the accepted step `from` → `to` of length `h` whose

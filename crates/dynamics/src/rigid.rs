@@ -66,7 +66,7 @@ use crate::integrate::{
 use crate::interpolate::{hermite_quintic, EvenStates};
 use crate::model::{InteractionError, InteractionModel, Wrench};
 use crate::state::{BodyState, Sample, TwoBodyState};
-use crate::tableau::{ErrorWeights, Tableau, DOP853, DOP853_D, DOP853_DENSE_A, MAX_STAGES};
+use crate::tableau::{Tableau, DOP853, DOP853_D, DOP853_DENSE_A, MAX_STAGES};
 use nalgebra::{Quaternion, UnitQuaternion};
 use surfgrav_potentials::{InertiaTensor, Pose, Real, Vec3};
 
@@ -504,8 +504,6 @@ impl AdaptiveSettings {
     fn error_norm(&self, y0: &Flat, y1: &Flat, k: &Stages, h: Real) -> Real {
         let tableau = self.tableau;
         let stages = tableau.stages();
-        let b = tableau.b();
-        let weight = |w: &[Real], i: usize| w.get(i).copied().unwrap_or(0.0);
         let scale: Flat = std::array::from_fn(|i| {
             self.absolute_tolerance
                 + self.relative_tolerance * group_norm(y0, i).max(group_norm(y1, i))
@@ -522,22 +520,7 @@ impl AdaptiveSettings {
             }
             (0..N).map(|i| (e[i] * h / scale[i]).powi(2)).sum()
         };
-        let n = N as Real;
-        match tableau.error {
-            ErrorWeights::Lower(lower) => {
-                (squares(&|i| weight(b, i) - weight(lower, i)) / n).sqrt()
-            }
-            ErrorWeights::Combined { fifth, third } => {
-                let e5 = squares(&|i| weight(fifth, i));
-                let e3 = squares(&|i| weight(b, i) - weight(third, i));
-                let denominator = e5 + 0.01 * e3;
-                if denominator == 0.0 {
-                    0.0
-                } else {
-                    e5 / (n * denominator).sqrt()
-                }
-            }
-        }
+        tableau.error_norm(N, squares)
     }
 
     fn first_step(&self, y: &Flat, f: &Flat, span: Real) -> Real {
@@ -868,6 +851,21 @@ impl System<'_> {
         }
     }
 
+    /// The end of a run at the contact `p`, reached from `from`: emits the output times up to it,
+    /// reports its sample to `observer` and returns the termination.
+    fn stop_at_contact(
+        &self,
+        from: &Point,
+        p: &Point,
+        output: &mut EvenStates<'_>,
+        observer: &mut dyn FnMut(&Sample),
+    ) -> Termination {
+        self.emit_between(from, p, None, output);
+        let event = self.contact_event(p);
+        observer(&event.sample);
+        Termination::Contact(Box::new(event))
+    }
+
     fn emit_between(
         &self,
         from: &Point,
@@ -933,16 +931,9 @@ pub(crate) fn integrate(
                         }
                     }
                     Advance::Contact(p) => {
-                        system.emit_between(&current, &p, None, &mut output);
-                        let event = system.contact_event(&p);
-                        observer(&event.sample);
-                        return Ok(finish(
-                            &system,
-                            &p,
-                            k - 1,
-                            0,
-                            Termination::Contact(Box::new(event)),
-                        ));
+                        let termination =
+                            system.stop_at_contact(&current, &p, &mut output, observer);
+                        return Ok(finish(&system, &p, k - 1, 0, termination));
                     }
                 }
             }
@@ -1015,16 +1006,10 @@ pub(crate) fn integrate(
                         };
                         match system.advance(&current, h_try, MAX_SUBDIVISION_DEPTH, &mut one) {
                             Ok(Advance::Contact(p)) => {
-                                system.emit_between(&current, &p, None, &mut output);
-                                let event = system.contact_event(&p);
-                                observer(&event.sample);
-                                return Ok(finish(
-                                    &system,
-                                    &p,
-                                    control.steps,
-                                    control.rejected,
-                                    Termination::Contact(Box::new(event)),
-                                ));
+                                let termination =
+                                    system.stop_at_contact(&current, &p, &mut output, observer);
+                                let (steps, rejected) = (control.steps, control.rejected);
+                                return Ok(finish(&system, &p, steps, rejected, termination));
                             }
                             Ok(Advance::Reached(_))
                             | Err(DynamicsError::ContactUnresolved { .. }) => {

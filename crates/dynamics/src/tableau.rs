@@ -84,6 +84,36 @@ impl Tableau {
     pub fn b(&self) -> &'static [Real] {
         self.a[self.a.len() - 1]
     }
+
+    /// The scaled error norm of a step over `components` state components, given
+    /// `squares(w)` $= \sum_n (h\sum_i w_i k\_{i,n} / \mathrm{sc}_n)^2$ for stage weights $w_i$
+    /// (how the state is scaled is the caller's): the RMS of the lower-order difference, or
+    /// Hairer's combined estimate $e_5/\sqrt{n(e_5 + 0.01 e_3)}$ (0 when both vanish; NaN or
+    /// infinity propagate to the caller's finiteness check).
+    pub fn error_norm(
+        &self,
+        components: usize,
+        squares: impl Fn(&dyn Fn(usize) -> Real) -> Real,
+    ) -> Real {
+        let b = self.b();
+        let weight = |w: &[Real], i: usize| w.get(i).copied().unwrap_or(0.0);
+        let n = components as Real;
+        match self.error {
+            ErrorWeights::Lower(lower) => {
+                (squares(&|i| weight(b, i) - weight(lower, i)) / n).sqrt()
+            }
+            ErrorWeights::Combined { fifth, third } => {
+                let e5 = squares(&|i| weight(fifth, i));
+                let e3 = squares(&|i| weight(b, i) - weight(third, i));
+                let denominator = e5 + 0.01 * e3;
+                if denominator == 0.0 {
+                    0.0
+                } else {
+                    e5 / (n * denominator).sqrt()
+                }
+            }
+        }
+    }
 }
 
 /// Dormand–Prince 5(4).
