@@ -86,7 +86,7 @@ impl Tableau {
     }
 
     /// The scaled error norm of a step over `components` state components, given
-    /// `squares(w)` $= \sum_n (h\sum_i w_i k\_{i,n} / \mathrm{sc}_n)^2$ for stage weights $w_i$
+    /// `squares(w)` $= \sum_n (h\sum_i w_i k\_{i,n} / \mathrm{sc}\_n)^2$ for stage weights $w_i$
     /// (how the state is scaled is the caller's): the RMS of the lower-order difference, or
     /// Hairer's combined estimate $e_5/\sqrt{n(e_5 + 0.01 e_3)}$ (0 when both vanish; NaN or
     /// infinity propagate to the caller's finiteness check).
