@@ -156,6 +156,54 @@ impl Lamina {
     }
 }
 
+impl Lamina {
+    /// Rebuilds `out` as the node table of this lamina (body frame) from explicit nodes:
+    /// `angles` as $(\cos\varphi_i, \sin\varphi_i, \omega^\varphi_i)$, `radial` as $(s_j, \omega^s_j)$
+    /// with $s_j \in [0, R]$, `rim` as $(\cos\varphi_i, \sin\varphi_i, \omega_i)$ for the rim. Reuses
+    /// `out`'s storage (no allocation once it is large enough): the aimed lamina rule builds a
+    /// new table for every pose.
+    pub fn fill_nodes(
+        &self,
+        angles: &[(Real, Real, Real)],
+        radial: &[(Real, Real)],
+        rim: &[(Real, Real, Real)],
+        out: &mut LaminaNodes,
+    ) {
+        out.area_points.clear();
+        out.area_weights.clear();
+        for &(s, weight_s) in radial {
+            for &(cos, sin, weight_phi) in angles {
+                out.area_points.push(Vec3::new(s * cos, s * sin, 0.0));
+                out.area_weights.push(weight_phi * weight_s * s);
+            }
+        }
+        out.rim_points.clear();
+        out.rim_weighted_normals.clear();
+        for &(cos, sin, weight) in rim {
+            let outward = Vec3::new(cos, sin, 0.0);
+            out.rim_points.push(outward * self.radius);
+            out.rim_weighted_normals
+                .push(outward * (weight * self.radius));
+        }
+        out.centre = Vec3::zeros();
+        out.normal = Vec3::z();
+    }
+}
+
+impl Default for LaminaNodes {
+    /// An empty table (no nodes; centre at the origin, normal $+\hat{\mathbf z}$), to be filled.
+    fn default() -> Self {
+        Self {
+            area_points: Vec::new(),
+            area_weights: Vec::new(),
+            rim_points: Vec::new(),
+            rim_weighted_normals: Vec::new(),
+            centre: Vec3::zeros(),
+            normal: Vec3::z(),
+        }
+    }
+}
+
 /// A lamina's node table (see the module docs): area points $\mathbf r_k$ with weights $w_k$
 /// (length²), rim points $\boldsymbol\rho_i$ with weighted outward in-plane normals
 /// $\boldsymbol\nu_i$ (length), the centre $\mathbf c$ and the unit normal $\hat{\mathbf n}$, all in

@@ -62,6 +62,9 @@ use std::sync::Arc;
 use surfgrav_potentials::{Field, Potential};
 use surfgrav_quadrature::{GaussLegendre, Rule1D};
 
+#[path = "aimed_lamina.rs"]
+pub(crate) mod lamina;
+
 /// Polar-angle widths $w$ of the tabulated clustering maps (index 0: none, Gauss–Legendre in
 /// $\cos\theta$); the map used is the nearest width below the one a pose asks for (stronger
 /// clustering costs nodes, never accuracy).
@@ -206,6 +209,8 @@ pub(crate) fn start_polar(width: Real, cluster: u8, tolerance: Real) -> u16 {
 pub(crate) struct GridCache {
     grids: Vec<(GridKey, Arc<SphereGrid>)>,
     nodes: usize,
+    /// The aimed lamina rule's workspace ([`lamina`]).
+    pub(crate) lamina: lamina::LaminaWorkspace,
 }
 
 impl GridCache {
@@ -249,7 +254,7 @@ pub(crate) struct Aim {
 /// or a disk's exterior potential through the face of its focal disk is analytic: only the rim
 /// is singular), or a ball.
 #[derive(Debug, Clone, Copy)]
-enum SingularSet {
+pub(crate) enum SingularSet {
     /// Semi-axes along body x, y, z (the triaxial focal ellipse, filled, or a prolate
     /// spheroid's focal segment, or a point).
     Ellipse(Vec3),
@@ -259,7 +264,33 @@ enum SingularSet {
     Ball(Real),
 }
 
-fn singular_set(y: &Body) -> SingularSet {
+impl SingularSet {
+    /// The point of the set nearest to `r_y` (Y's frame); for a circle seen from its axis,
+    /// a point of it.
+    pub(crate) fn nearest(&self, r_y: &Vec3) -> Vec3 {
+        match *self {
+            SingularSet::Ellipse(s) => nearest_on_ellipsoid(&s, r_y),
+            SingularSet::Circle(radius) => {
+                let planar = r_y.xy().norm();
+                if planar > 0.0 {
+                    Vec3::new(r_y.x * radius / planar, r_y.y * radius / planar, 0.0)
+                } else {
+                    Vec3::new(radius, 0.0, 0.0)
+                }
+            }
+            SingularSet::Ball(radius) => {
+                let n = r_y.norm();
+                if n <= radius {
+                    *r_y
+                } else {
+                    r_y * (radius / n)
+                }
+            }
+        }
+    }
+}
+
+pub(crate) fn singular_set(y: &Body) -> SingularSet {
     match y.shape() {
         BodyShape::Point => SingularSet::Ellipse(Vec3::zeros()),
         BodyShape::Solid(e) => {
@@ -285,7 +316,7 @@ fn singular_set(y: &Body) -> SingularSet {
 
 /// The point of the axis-aligned ellipsoid (or ellipse, for a zero semi-axis: the filled
 /// region) with semi-axes `axes` nearest to `q` (`q` itself if inside).
-fn nearest_on_ellipsoid(axes: &Vec3, q: &Vec3) -> Vec3 {
+pub(crate) fn nearest_on_ellipsoid(axes: &Vec3, q: &Vec3) -> Vec3 {
     // Components along zero axes are clamped to zero (the set is flat there).
     let q = Vec3::new(
         if axes.x > 0.0 { q.x } else { 0.0 },
@@ -331,44 +362,42 @@ fn nearest_on_ellipsoid(axes: &Vec3, q: &Vec3) -> Vec3 {
     })
 }
 
-/// The aim for integrating over the ellipsoid `e` (integration frame) in Y's field.
-pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Real) -> Aim {
-    let axes = e.semi_axes();
+/// The nearest pair between a convex set X of the integration frame (`project_x`: the nearest
+/// point of X; or a circle, whose projection is not convex but whose alternating projections
+/// still settle at a locally nearest pair) and the singular set of Y's field (`map`: X's frame
+/// into Y's), by alternating projections (convergent to a nearest pair for two convex sets),
+/// stopped once a step moves the point on Y's set by less than $10^{-6}$ `scale`. Returns the
+/// point of X and the singular point, both in X's frame.
+pub(crate) fn nearest_singular_point(
+    y: &Body,
+    map: &FrameMap,
+    project_x: impl Fn(&Vec3) -> Vec3,
+    scale: Real,
+) -> (Vec3, Vec3) {
     let set = singular_set(y);
     let to_y = |r: &Vec3| map.apply(r);
     let to_x = |r: &Vec3| map.back(&(r - map.offset));
-    let project_set = |r_y: &Vec3| match set {
-        SingularSet::Ellipse(s) => nearest_on_ellipsoid(&s, r_y),
-        SingularSet::Circle(radius) => {
-            let planar = r_y.xy().norm();
-            if planar > 0.0 {
-                Vec3::new(r_y.x * radius / planar, r_y.y * radius / planar, 0.0)
-            } else {
-                Vec3::new(radius, 0.0, 0.0)
-            }
-        }
-        SingularSet::Ball(radius) => {
-            let n = r_y.norm();
-            if n <= radius {
-                *r_y
-            } else {
-                r_y * (radius / n)
-            }
-        }
-    };
-    // Alternating projections between two convex sets converge to a nearest pair.
+    let project_set = |r_y: &Vec3| set.nearest(r_y);
     let mut y_point = Vec3::zeros();
     let mut x_point = Vec3::zeros();
     for _ in 0..12 {
-        x_point = nearest_on_ellipsoid(&axes, &to_x(&y_point));
+        x_point = project_x(&to_x(&y_point));
         let next = project_set(&to_y(&x_point));
         let moved = (next - y_point).norm();
         y_point = next;
-        if moved <= 1e-6 * axes.max() {
+        if moved <= 1e-6 * scale {
             break;
         }
     }
-    let delta = (to_x(&y_point) - x_point).norm();
+    (x_point, to_x(&y_point))
+}
+
+/// The aim for integrating over the ellipsoid `e` (integration frame) in Y's field.
+pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Real) -> Aim {
+    let axes = e.semi_axes();
+    let (x_point, singular) =
+        nearest_singular_point(y, map, |r| nearest_on_ellipsoid(&axes, r), axes.max());
+    let delta = (singular - x_point).norm();
     let pole = x_point.component_div(&axes).normalize();
     // Tangent basis at the pole; e1 along the direction the surface stretches most.
     let helper = if pole.x.abs() < 0.9 {

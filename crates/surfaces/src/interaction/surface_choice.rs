@@ -75,6 +75,8 @@ pub(crate) struct Placement {
     /// ([`Parametrisation::Aimed`], or [`Parametrisation::Automatic`] without both mirror
     /// symmetries).
     pub(crate) aim: Option<aimed::Aim>,
+    /// The aimed lamina rule's plan, where X is a disk and the aimed rule is wanted.
+    pub(crate) lamina_aim: Option<aimed::lamina::LaminaAim>,
 }
 
 impl Placement {
@@ -99,7 +101,18 @@ impl Placement {
             }
             _ => None,
         };
-        Self { aim, ..self }
+        let lamina_aim =
+            match x.shape() {
+                BodyShape::Disk(l) if wanted && !self.node_check => Some(
+                    aimed::lamina::lamina_aim(l, y, &self.map, options.relative_tolerance),
+                ),
+                _ => None,
+            };
+        Self {
+            aim,
+            lamina_aim,
+            ..self
+        }
     }
 }
 /// The integration surface: the one forced by the options, the only one there is, or the
@@ -177,6 +190,9 @@ pub(crate) fn predicted_cost(
     y: &Body,
 ) -> Real {
     let field_cost = y.potential().field_cost();
+    if let Some(aim) = &placement.lamina_aim {
+        return aim.size(aim.start) as Real * field_cost;
+    }
     if let Some(aim) = &placement.aim {
         // Near a disk's rim (a singular curve running past the pole) the aimed rule
         // converges far more slowly than its point model predicts: measured on the
@@ -269,6 +285,7 @@ pub(crate) fn place(
         far: distance > FAR_FIELD_RATIO * x.bounding_radius()
             || distance > CANCELLATION_RATIO * cancellation_radius(x),
         aim: None,
+        lamina_aim: None,
     }
     .aimed(x, y, *options))
 }

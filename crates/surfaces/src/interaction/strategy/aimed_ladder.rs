@@ -30,6 +30,9 @@ impl Strategy for AimedLadder {
             request,
             budget,
         } = *problem;
+        if let (Some(aim), BodyShape::Disk(lamina)) = (p.lamina_aim, x.shape()) {
+            return aimed::lamina::refine(&mut self.grids.lamina, problem, lamina, &aim);
+        }
         let (Some(aim), BodyShape::Solid(e)) = (p.aim, x.shape()) else {
             return FixedLadder.refine(problem);
         };

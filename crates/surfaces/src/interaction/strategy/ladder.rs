@@ -268,7 +268,7 @@ pub(crate) fn run_ladder(
 }
 
 /// Runs the monomorphised loop for Y's field kind over X's table (dispatch once per table).
-fn evaluate_table(
+pub(crate) fn evaluate_table(
     x: &Body,
     y: &Body,
     table: &NodeTable,
