@@ -318,6 +318,27 @@ struct Dynamics<'m> {
 }
 
 impl<'m> Dynamics<'m> {
+    /// The summary of a run ending at `last` after `(steps, rejected)` steps.
+    fn summary(
+        &self,
+        last: Sample,
+        (steps, rejected_steps): (usize, usize),
+        termination: Termination,
+    ) -> RunSummary {
+        RunSummary {
+            last,
+            steps,
+            rejected_steps,
+            force_evaluations: self.evaluations,
+            termination,
+        }
+    }
+
+    /// The summary of a run ending at the contact `event`.
+    fn contact_summary(&self, event: ContactEvent, counts: (usize, usize)) -> RunSummary {
+        self.summary(event.sample, counts, Termination::Contact(Box::new(event)))
+    }
+
     fn new(model: &'m dyn InteractionModel, template: TwoBodyState, start: Real) -> Self {
         Self {
             model,
@@ -880,13 +901,11 @@ impl FixedStep {
                     current = next;
                     observer(&current);
                     if let Some(event) = escaped(model, self.escape_distance, &current) {
-                        return Ok(RunSummary {
-                            last: current,
-                            steps: k,
-                            rejected_steps: 0,
-                            force_evaluations: dynamics.evaluations,
-                            termination: Termination::Escape(Box::new(event)),
-                        });
+                        return Ok(dynamics.summary(
+                            current,
+                            (k, 0),
+                            Termination::Escape(Box::new(event)),
+                        ));
                     }
                 }
                 Trial::Touching => {
@@ -902,23 +921,11 @@ impl FixedStep {
                     };
                     emit_step(&mut output, &current, &event.sample);
                     observer(&event.sample);
-                    return Ok(RunSummary {
-                        last: event.sample,
-                        steps: k - 1,
-                        rejected_steps: 0,
-                        force_evaluations: dynamics.evaluations,
-                        termination: Termination::Contact(Box::new(event)),
-                    });
+                    return Ok(dynamics.contact_summary(event, (k - 1, 0)));
                 }
             }
         }
-        Ok(RunSummary {
-            last: current,
-            steps: grid.count,
-            rejected_steps: 0,
-            force_evaluations: dynamics.evaluations,
-            termination: Termination::Completed,
-        })
+        Ok(dynamics.summary(current, (grid.count, 0), Termination::Completed))
     }
 }
 
@@ -1480,13 +1487,11 @@ impl Adaptive {
                     let next_h = control.accept(h_try, error);
                     observer(&current);
                     if let Some(event) = escaped(model, self.escape_distance, &current) {
-                        return Ok(RunSummary {
-                            last: current,
-                            steps: control.steps,
-                            rejected_steps: control.rejected,
-                            force_evaluations: dynamics.evaluations,
-                            termination: Termination::Escape(Box::new(event)),
-                        });
+                        return Ok(dynamics.summary(
+                            current,
+                            (control.steps, control.rejected),
+                            Termination::Escape(Box::new(event)),
+                        ));
                     }
                     if last {
                         break;
@@ -1510,23 +1515,15 @@ impl Adaptive {
                         clock.emit_until(event.sample.time, state_at, *emit);
                     }
                     observer(&event.sample);
-                    return Ok(RunSummary {
-                        last: event.sample,
-                        steps: control.steps,
-                        rejected_steps: control.rejected,
-                        force_evaluations: dynamics.evaluations,
-                        termination: Termination::Contact(Box::new(event)),
-                    });
+                    return Ok(dynamics.contact_summary(event, (control.steps, control.rejected)));
                 }
             }
         }
-        Ok(RunSummary {
-            last: current,
-            steps: control.steps,
-            rejected_steps: control.rejected,
-            force_evaluations: dynamics.evaluations,
-            termination: Termination::Completed,
-        })
+        Ok(dynamics.summary(
+            current,
+            (control.steps, control.rejected),
+            Termination::Completed,
+        ))
     }
 }
 
