@@ -22,7 +22,8 @@ def sci(x):
 
 print("## Relative error of GUBAS-RS against surfgrav's exact values\n")
 print("Force: |ΔF|/|F|; torques: |ΔM|/max(|M|, |V|) (surfgrav's measure: an aligned pair has M = 0);"
-      " energy: |ΔV|/|V|. `max` is the largest of the four.\n")
+      " energy: |ΔV|/|V|. At order 8 an ellipsoid pair has a second line: the same series with"
+      " complete inertia integrals (`complete T`).\n")
 head = "| configuration | surfgrav certified, agreement | " + " | ".join(
     f"order {n}: F / M_A / M_B / V" for n in orders) + " |"
 print(head)
@@ -40,8 +41,9 @@ for name, e in exact.items():
     print(f"| {name} | {e['certified']}, {sci(e['agreement'])} | " + " | ".join(cells) + " |")
 
 print("\n## Time per evaluation (force + both torques + energy), one thread\n")
-print("CPU time of the thread, best of several batches (wall time in parentheses: on a shared"
-      " machine it also counts the waits for a core).\n")
+print("CPU time per evaluation, best of several batches (surfgrav: every thread of the process,"
+      " with one rayon worker; GUBAS-RS: its one thread), wall time in parentheses: on a shared"
+      " machine the wall time also counts the waits for a core.\n")
 print("| configuration | surfgrav µs (1e-12; evaluations) | "
       + " | ".join(f"GUBAS order {n} µs" for n in orders) + " |")
 print("|" + "---|" * (2 + len(orders)))
