@@ -204,15 +204,23 @@ pub(crate) fn escaped(
     })
 }
 
-fn check_escape_distance(distance: Option<Real>) -> Result<Option<Real>, DynamicsError> {
-    match distance {
-        Some(d) if !(d.is_finite() && d > 0.0) => Err(DynamicsError::InvalidParameter {
-            name: "escape_distance",
+/// `value` if it is positive and finite, else [`DynamicsError::InvalidParameter`] naming it.
+pub(crate) fn positive_finite(name: &'static str, value: Real) -> Result<Real, DynamicsError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(DynamicsError::InvalidParameter {
+            name,
             requirement: "positive and finite",
-            value: d,
-        }),
-        other => Ok(other),
+            value,
+        })
     }
+}
+
+fn check_escape_distance(distance: Option<Real>) -> Result<Option<Real>, DynamicsError> {
+    distance
+        .map(|d| positive_finite("escape_distance", d))
+        .transpose()
 }
 
 /// What a run did.
@@ -685,16 +693,9 @@ pub struct FixedStep {
 impl FixedStep {
     /// A fixed-step integrator; `step` must be positive and finite.
     pub fn new(scheme: FixedScheme, step: Real) -> Result<Self, DynamicsError> {
-        if !(step.is_finite() && step > 0.0) {
-            return Err(DynamicsError::InvalidParameter {
-                name: "step",
-                requirement: "positive and finite",
-                value: step,
-            });
-        }
         Ok(Self {
             scheme,
-            step,
+            step: positive_finite("step", step)?,
             weights: scheme.weights(),
             escape_distance: None,
         })
@@ -1158,21 +1159,10 @@ impl Adaptive {
     /// minimum step 1e-12 × the span of the run, maximum step the span, initial step chosen
     /// automatically, at most 10⁸ steps. [`Adaptive::with_pair`] switches the pair.
     pub fn new(relative_tolerance: Real, absolute_tolerance: Real) -> Result<Self, DynamicsError> {
-        let positive = |name, value: Real| {
-            if value.is_finite() && value > 0.0 {
-                Ok(value)
-            } else {
-                Err(DynamicsError::InvalidParameter {
-                    name,
-                    requirement: "positive and finite",
-                    value,
-                })
-            }
-        };
         Ok(Self {
             pair: EmbeddedPair::DormandPrince54,
-            relative_tolerance: positive("relative_tolerance", relative_tolerance)?,
-            absolute_tolerance: positive("absolute_tolerance", absolute_tolerance)?,
+            relative_tolerance: positive_finite("relative_tolerance", relative_tolerance)?,
+            absolute_tolerance: positive_finite("absolute_tolerance", absolute_tolerance)?,
             min_step: 0.0,
             max_step: Real::INFINITY,
             initial_step: None,
@@ -1229,14 +1219,7 @@ impl Adaptive {
 
     /// Sets the first step (positive, finite).
     pub fn with_initial_step(mut self, step: Real) -> Result<Self, DynamicsError> {
-        if !(step.is_finite() && step > 0.0) {
-            return Err(DynamicsError::InvalidParameter {
-                name: "initial_step",
-                requirement: "positive and finite",
-                value: step,
-            });
-        }
-        self.initial_step = Some(step);
+        self.initial_step = Some(positive_finite("initial_step", step)?);
         Ok(self)
     }
 

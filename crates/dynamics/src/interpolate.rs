@@ -13,7 +13,7 @@
 //! error at the samples. It needs nothing from the integrator but the samples, so every method of
 //! this crate (fixed-step or adaptive) has the same dense output.
 
-use crate::integrate::DynamicsError;
+use crate::integrate::{positive_finite, DynamicsError};
 use crate::state::{Sample, TwoBodyState};
 use surfgrav_potentials::{Real, Vec3};
 
@@ -174,16 +174,9 @@ impl OutputClock {
     /// # Errors
     /// [`DynamicsError::InvalidParameter`] unless `interval` is positive and finite.
     pub(crate) fn new(start: Real, interval: Real) -> Result<Self, DynamicsError> {
-        if !(interval.is_finite() && interval > 0.0) {
-            return Err(DynamicsError::InvalidParameter {
-                name: "interval",
-                requirement: "positive and finite",
-                value: interval,
-            });
-        }
         Ok(Self {
             start,
-            interval,
+            interval: positive_finite("interval", interval)?,
             emitted: 0,
         })
     }
