@@ -4,12 +4,15 @@
 mod interaction_support;
 
 use interaction_support::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use surfgrav_potentials::{
-    Ellipsoid as SolidEllipsoid, Pose, Potential, Spheroid, Symmetry, TypedPotential, UniformDisk,
+    Ellipsoid as SolidEllipsoid, Pose, Potential, Sphere, Spheroid, Symmetry, TypedPotential,
+    UniformDisk,
 };
 use surfgrav_surfaces::interaction::{
-    interact, Body, BodyShape, InteractionError, MethodChoice, SurfaceChoice,
+    interact, Body, BodyShape, Interaction, InteractionEngine, InteractionError, Method,
+    MethodChoice, Pair, PairRule, SurfaceChoice,
 };
 use surfgrav_surfaces::{EllipsoidSurface, Surface};
 
@@ -288,4 +291,79 @@ fn a_custom_potential_that_reports_nothing_takes_the_generic_path() {
         .interact(&silent, &Pose::identity(), &partner, &coplanar)
         .unwrap();
     assert!(slow.evaluations > fast.evaluations);
+}
+
+/// A user's pair rule that never applies, counting how often it is asked.
+#[derive(Debug, Default)]
+struct Abstaining {
+    asked: AtomicUsize,
+}
+
+impl PairRule for Abstaining {
+    fn interact(&self, _: &Pair<'_>) -> Result<Option<Interaction>, InteractionError> {
+        self.asked.fetch_add(1, Ordering::Relaxed);
+        Ok(None)
+    }
+}
+
+/// The pair dispatcher is a chain: a user's rule is asked first, once per interaction; when
+/// it abstains the built-in closed forms and then the surface integral answer exactly as
+/// without it; a pair with no surface and no closed form is the typed `NoSurface` error.
+#[test]
+fn pair_rules_are_asked_first_and_fall_through() {
+    let rule = Arc::new(Abstaining::default());
+    let mut chained = InteractionEngine::default().with_pair_rule(rule.clone());
+    let mut plain = InteractionEngine::default();
+    let sphere = Body::sphere(Sphere::new(0.5, 2.0).unwrap()).unwrap();
+    let spheroid = paper_spheroid();
+    let pose_b = pose([1.9, 1.1, 0.5], [0.3, -0.2, 0.4]);
+    for (a, b, method) in [
+        (&sphere, &spheroid, Method::AnalyticPoint),
+        (&spheroid, &spheroid, Method::SurfaceOverA),
+    ] {
+        let expected = plain.interact(a, &Pose::identity(), b, &pose_b).unwrap();
+        let got = chained.interact(a, &Pose::identity(), b, &pose_b).unwrap();
+        assert_eq!(got.method, method);
+        assert_eq!(got, expected);
+    }
+    assert_eq!(rule.asked.load(Ordering::Relaxed), 2);
+    // No surface on either side and no closed form: the typed error, after asking the rule.
+    let field_only = || {
+        Body::custom(
+            Arc::new(Wrapped {
+                inner: Spheroid::new(1.0, 0.5, 1.0).unwrap(),
+                report: false,
+            }),
+            BodyShape::FieldOnly,
+        )
+        .unwrap()
+    };
+    let far = pose([5.0, 0.0, 0.0], [0.0; 3]);
+    assert!(matches!(
+        chained.interact(&field_only(), &Pose::identity(), &field_only(), &far),
+        Err(InteractionError::NoSurface { .. })
+    ));
+    assert_eq!(rule.asked.load(Ordering::Relaxed), 3);
+}
+
+/// A field-only custom potential that reports spherical symmetry gets the point formula, the
+/// built-in sphere's closed form, with the same numbers bit for bit.
+#[test]
+fn a_reported_spherical_field_gets_the_point_formula() {
+    let inner = Sphere::new(0.5, 2.0).unwrap();
+    let custom = Body::custom(
+        Arc::new(Wrapped {
+            inner,
+            report: true,
+        }),
+        BodyShape::FieldOnly,
+    )
+    .unwrap();
+    assert!(custom.is_spherically_symmetric());
+    let builtin = Body::sphere(inner).unwrap();
+    let pose_b = pose([1.9, 1.1, 0.5], [0.3, -0.2, 0.4]);
+    let expected = interact(&builtin, &Pose::identity(), &paper_spheroid(), &pose_b).unwrap();
+    let got = interact(&custom, &Pose::identity(), &paper_spheroid(), &pose_b).unwrap();
+    assert_eq!(got.method, Method::AnalyticPoint);
+    assert_eq!(got, expected);
 }

@@ -16,11 +16,93 @@ use surfgrav_potentials::{CoplanarDiskPair, Pose, Region, UniformDisk};
 /// accuracy of the acceleration, which dominates).
 pub const ANALYTIC_RELATIVE_ERROR: Real = 1e-13;
 
-/// The closed form for this pair, if one applies: the point formula when either body is
-/// spherically symmetric (after checking, for a body of unknown shape (`exact` is
-/// [`Contact::Unknown`]), that the formula's assumptions hold), then the coplanar disk pair;
-/// `None` otherwise.
+/// Two bodies placed in the world, with what every pair rule needs computed once.
+#[derive(Debug, Clone, Copy)]
+pub struct Pair<'a> {
+    /// Body A.
+    pub a: &'a Body,
+    /// A's pose.
+    pub pose_a: &'a Pose,
+    /// Body B.
+    pub b: &'a Body,
+    /// B's pose.
+    pub pose_b: &'a Pose,
+    /// Distance between the centroids.
+    pub separation: Real,
+    /// Whether the engine's exact contact test decided that the bodies are apart (both shapes
+    /// known); `false`: a shape is unknown, and a rule must check what its formula assumes
+    /// (the point formula checks the centre and, near contact, the sphere's nodes).
+    pub separated: bool,
+}
+
+/// A closed form for some pairs of bodies, tried before any surface integral (parry's query
+/// dispatcher is the model): the engine asks its rules in order and takes the first answer;
+/// [`InteractionEngine::with_pair_rule`](super::InteractionEngine::with_pair_rule) puts a
+/// user's rule in front of the built-in ones ([`PointFormula`], [`CoplanarDisks`]). A pair no
+/// rule answers goes to the surface integral, and a pair without a surface to integrate over
+/// is the typed error [`InteractionError::NoSurface`].
+///
+/// Rules see the bodies through [`Body::typed`] and the [`Potential`](surfgrav_potentials::Potential)
+/// trait, so a rule for a user's kind needs no change to the engine. A rule's result should
+/// name its method ([`Method::ClosedForm`] for a user's) and state its accuracy in
+/// `error_estimate`.
+pub trait PairRule: std::fmt::Debug + Send + Sync {
+    /// The interaction of the pair, `Ok(None)` when this rule does not apply to it.
+    ///
+    /// # Errors
+    /// What the rule finds wrong with a pair it applies to (bodies that overlap, a result
+    /// that is not finite).
+    fn interact(&self, pair: &Pair<'_>) -> Result<Option<Interaction>, InteractionError>;
+}
+
+/// The point formula: a point mass, a sphere, or any body whose field reports
+/// [`Symmetry::Spherical`](surfgrav_potentials::Symmetry::Spherical), with any body outside it
+/// (the [module docs](super), method 1).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PointFormula;
+
+impl PairRule for PointFormula {
+    fn interact(&self, pair: &Pair<'_>) -> Result<Option<Interaction>, InteractionError> {
+        let Pair {
+            a,
+            pose_a,
+            b,
+            pose_b,
+            separation,
+            separated,
+        } = *pair;
+        if !(a.is_spherically_symmetric() || b.is_spherically_symmetric()) {
+            return Ok(None);
+        }
+        if !separated {
+            check_point_formula(a, pose_a, b, pose_b, separation)?;
+        }
+        analytic_point(a, pose_a, b, pose_b).map(Some)
+    }
+}
+
+/// Conway's closed form for two uniform disks in one plane (the [module docs](super),
+/// method 2).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CoplanarDisks;
+
+impl PairRule for CoplanarDisks {
+    fn interact(&self, pair: &Pair<'_>) -> Result<Option<Interaction>, InteractionError> {
+        analytic_disk_pair(pair.a, pair.pose_a, pair.b, pair.pose_b)
+    }
+}
+
+/// The built-in rules, in the order they are tried.
+pub(crate) fn built_in_rules() -> Vec<std::sync::Arc<dyn PairRule>> {
+    vec![
+        std::sync::Arc::new(PointFormula),
+        std::sync::Arc::new(CoplanarDisks),
+    ]
+}
+
+/// The first answer of `rules` for this pair, `None` when none applies.
 pub(crate) fn closed_form(
+    rules: &[std::sync::Arc<dyn PairRule>],
     a: &Body,
     pose_a: &Pose,
     b: &Body,
@@ -28,13 +110,20 @@ pub(crate) fn closed_form(
     exact: Contact,
     separation: Real,
 ) -> Result<Option<Interaction>, InteractionError> {
-    if a.is_spherically_symmetric() || b.is_spherically_symmetric() {
-        if exact == Contact::Unknown {
-            check_point_formula(a, pose_a, b, pose_b, separation)?;
+    let pair = Pair {
+        a,
+        pose_a,
+        b,
+        pose_b,
+        separation,
+        separated: exact != Contact::Unknown,
+    };
+    for rule in rules {
+        if let Some(result) = rule.interact(&pair)? {
+            return Ok(Some(result));
         }
-        return analytic_point(a, pose_a, b, pose_b).map(Some);
     }
-    analytic_disk_pair(a, pose_a, b, pose_b)
+    Ok(None)
 }
 
 /// Before the point formula with a body O of unknown shape: S's centre, and the nodes of a

@@ -5,7 +5,7 @@
 
 use super::assembly::not_met;
 use super::body::Body;
-use super::closed_form::closed_form;
+use super::closed_form::{built_in_rules, closed_form, PairRule};
 use super::error::{InteractionError, Side};
 use super::options::{
     Evaluation, ForceInteraction, Interaction, InteractionOptions, MethodChoice, Request,
@@ -18,6 +18,7 @@ use super::strategy::ladder::SingleLevel;
 use super::strategy::nested_doubling::NestedDoubling;
 use super::strategy::{Problem, Strategy};
 use super::surface_choice::choose_surface;
+use std::sync::Arc;
 use surfgrav_potentials::Pose;
 use surfgrav_quadrature::MINIMUM_EVALUATION_BUDGET;
 
@@ -26,12 +27,26 @@ pub use super::assembly::ROUNDING_PER_TERM;
 pub use super::closed_form::ANALYTIC_RELATIVE_ERROR;
 pub use super::surface_choice::{CANCELLATION_RATIO, FAR_FIELD_RATIO};
 
+impl Default for InteractionEngine {
+    fn default() -> Self {
+        Self {
+            options: InteractionOptions::default(),
+            pair_rules: built_in_rules(),
+            ladder: AimedLadder::default(),
+            nested: NestedDoubling::default(),
+            adaptive: Adaptive::default(),
+        }
+    }
+}
+
 /// Computes interactions of [`Body`] pairs (see the [module docs](super)); holds the options
 /// and each strategy's workspace (the adaptive integrator's, the nested rule's line sums and
 /// node geometry, the aimed rule's grids). Node tables are cached in the bodies.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct InteractionEngine {
     options: InteractionOptions,
+    /// The closed forms, tried in order before any surface integral ([`PairRule`]).
+    pair_rules: Vec<Arc<dyn PairRule>>,
     /// The ladder (fixed tables, or the aimed rule's grids where the placement is aimed).
     ladder: AimedLadder,
     /// The nested doubling rule.
@@ -82,6 +97,59 @@ impl InteractionEngine {
     /// The options.
     pub fn options(&self) -> &InteractionOptions {
         &self.options
+    }
+
+    /// The same engine with `rule` tried first, before the other closed forms and the surface
+    /// integral (with [`MethodChoice::Automatic`]; the other methods always integrate).
+    ///
+    /// ```
+    /// use surfgrav_potentials::{Pose, Spheroid, TypedPotential, Vec3};
+    /// use surfgrav_surfaces::interaction::{
+    ///     Body, Interaction, InteractionEngine, InteractionError, Method, Pair, PairRule,
+    /// };
+    ///
+    /// /// Two spheroids far apart: the point-mass term alone (say a user knows it is enough).
+    /// #[derive(Debug)]
+    /// struct FarSpheroids;
+    ///
+    /// impl PairRule for FarSpheroids {
+    ///     fn interact(&self, pair: &Pair<'_>) -> Result<Option<Interaction>, InteractionError> {
+    ///         let both = matches!(
+    ///             (pair.a.typed(), pair.b.typed()),
+    ///             (TypedPotential::Spheroid(_), TypedPotential::Spheroid(_))
+    ///         );
+    ///         if !both || pair.separation < 1e6 {
+    ///             return Ok(None);
+    ///         }
+    ///         let d = pair.pose_b.position - pair.pose_a.position;
+    ///         let gm = pair.a.mass() * pair.b.mass();
+    ///         let force_on_a = d * (gm / pair.separation.powi(3));
+    ///         Ok(Some(Interaction {
+    ///             force_on_a,
+    ///             force_on_b: -force_on_a,
+    ///             torque_on_a: Vec3::zeros(),
+    ///             torque_on_b: Vec3::zeros(),
+    ///             potential_energy: -gm / pair.separation,
+    ///             method: Method::ClosedForm("far spheroids"),
+    ///             integrated_over: None,
+    ///             evaluations: 0,
+    ///             error_estimate: 1e-12,
+    ///             level: None,
+    ///         }))
+    ///     }
+    /// }
+    ///
+    /// let body = || Body::spheroid(Spheroid::new(1.0, 0.25, 1.0).unwrap()).unwrap();
+    /// let mut engine = InteractionEngine::default().with_pair_rule(std::sync::Arc::new(FarSpheroids));
+    /// let far = Pose::new(Vec3::new(1e7, 0.0, 0.0), Vec3::zeros());
+    /// let near = Pose::new(Vec3::new(3.0, 0.0, 0.0), Vec3::zeros());
+    /// assert_eq!(engine.interact(&body(), &Pose::identity(), &body(), &far)?.method.name(), "far spheroids");
+    /// assert_eq!(engine.interact(&body(), &Pose::identity(), &body(), &near)?.method, Method::SurfaceOverA);
+    /// # Ok::<(), InteractionError>(())
+    /// ```
+    pub fn with_pair_rule(mut self, rule: Arc<dyn PairRule>) -> Self {
+        self.pair_rules.insert(0, rule);
+        self
     }
 
     /// The force only, for integrator stages that need nothing else
@@ -210,7 +278,8 @@ impl InteractionEngine {
             Contact::Separated | Contact::Unknown => {}
         }
         if self.options.method == MethodChoice::Automatic {
-            if let Some(result) = closed_form(a, pose_a, b, pose_b, exact, separation)? {
+            let rules = &self.pair_rules;
+            if let Some(result) = closed_form(rules, a, pose_a, b, pose_b, exact, separation)? {
                 return Ok(result);
             }
         }

@@ -142,6 +142,7 @@ mod surface_choice;
 pub mod work_precision;
 
 pub use body::{Body, BodyShape};
+pub use closed_form::{CoplanarDisks, Pair, PairRule, PointFormula};
 pub use engine::{
     InteractionEngine, ANALYTIC_RELATIVE_ERROR, CANCELLATION_RATIO, FAR_FIELD_RATIO,
     ROUNDING_PER_TERM,

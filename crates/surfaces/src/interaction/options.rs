@@ -88,6 +88,8 @@ pub enum Method {
     SurfaceOverB,
     /// Adaptive cubature (over the surface named by [`Interaction::integrated_over`]).
     Adaptive,
+    /// A user's closed form ([`super::PairRule`]), by its name.
+    ClosedForm(&'static str),
 }
 
 impl Method {
@@ -99,6 +101,7 @@ impl Method {
             Method::SurfaceOverA => "surface-over-A",
             Method::SurfaceOverB => "surface-over-B",
             Method::Adaptive => "adaptive",
+            Method::ClosedForm(name) => name,
         }
     }
 }
