@@ -535,6 +535,31 @@ impl<'y> Source<'y> {
         }
     }
 
+    /// The fields at source-frame points into `out` (replaced), with their bounds: four at a
+    /// time by the local expansion when it holds them all (bit for bit its single-point
+    /// values), else point by point.
+    fn fields(&self, points: &[Vec3], out: &mut Vec<(Field, Real)>) {
+        out.clear();
+        if let Some(local) = self
+            .local
+            .as_ref()
+            .filter(|l| points.iter().all(|p| l.contains(p)))
+        {
+            let zero = Field {
+                potential: 0.0,
+                acceleration: Vec3::zeros(),
+            };
+            let mut fields = [zero; NODES_PER_BATCH];
+            for p in points.chunks(NODES_PER_BATCH) {
+                let f = &mut fields[..p.len()];
+                local.fields_into(p, f);
+                out.extend(f.iter().map(|&f| (f, local.relative_bound())));
+            }
+            return;
+        }
+        out.extend(points.iter().map(|p| self.field(p)));
+    }
+
     /// The field at a source-frame point and the relative truncation bound it carries.
     #[inline]
     fn field(&self, p: &Vec3) -> (Field, Real) {
@@ -569,6 +594,68 @@ struct Partial {
     evaluations: usize,
 }
 
+/// Nodes gathered before their fields are evaluated together.
+const NODES_PER_BATCH: usize = 64;
+
+/// A chunk's running sums (X frame, without the density).
+struct Sums {
+    force: CompensatedSum3,
+    force_acc: CompensatedSum3,
+    torque: CompensatedSum3,
+    torque_acc: CompensatedSum3,
+    energy: CompensatedSum,
+    abs: [Real; 5],
+    bound: Real,
+    evaluations: usize,
+}
+
+impl Sums {
+    /// Adds node `x` with weighted area vector `w`, where the source field (Y frame) and the
+    /// relative bound it carries are `field`, `b`; `qt` maps Y to X.
+    #[inline]
+    fn add(&mut self, x: &Vec3, w: &Vec3, field: &Field, b: Real, qt: &Matrix3<Real>, phi0: Real) {
+        self.bound = self.bound.max(b);
+        self.evaluations += 1;
+        let a = qt * field.acceleration;
+        let dphi = field.potential - phi0;
+        let r2 = x.norm_squared();
+        let fw = w * dphi;
+        self.force.add(&fw);
+        self.abs[0] += fw.norm();
+        let tw = x.cross(w) * dphi;
+        self.torque.add(&tw);
+        self.abs[1] += tw.norm();
+        let aw = a.dot(w);
+        let fa = x * aw;
+        self.force_acc.add(&fa);
+        self.abs[3] += fa.norm();
+        let ta = w.cross(&a) * r2;
+        self.torque_acc.add(&ta);
+        self.abs[4] += ta.norm();
+        let (e1, e2) = (field.potential * x.dot(w), 0.5 * r2 * aw);
+        self.energy.add(e1 + e2);
+        self.abs[2] += e1.abs() + e2.abs();
+    }
+}
+
+/// A batch of nodes (X frame), their images in Y's frame and the fields there.
+struct Batch {
+    nodes: Vec<(Vec3, Vec3)>,
+    points: Vec<Vec3>,
+    fields: Vec<(Field, Real)>,
+}
+
+impl Batch {
+    fn flush(&mut self, sums: &mut Sums, source: &Source, qt: &Matrix3<Real>, phi0: Real) {
+        source.fields(&self.points, &mut self.fields);
+        for ((x, w), (field, b)) in self.nodes.iter().zip(&self.fields) {
+            sums.add(x, w, field, *b, qt, phi0);
+        }
+        self.nodes.clear();
+        self.points.clear();
+    }
+}
+
 #[allow(clippy::too_many_arguments)]
 fn chunk_sums(
     geometry: &Geometry,
@@ -582,50 +669,41 @@ fn chunk_sums(
 ) -> Partial {
     let mesh = geometry.mesh;
     let qt = q.transpose();
-    let mut force = CompensatedSum3::new();
-    let mut force_acc = CompensatedSum3::new();
-    let mut torque = CompensatedSum3::new();
-    let mut torque_acc = CompensatedSum3::new();
-    let mut energy = CompensatedSum::new();
-    let mut abs = [0.0; 5];
-    let mut bound: Real = 0.0;
-    let mut evaluations = 0;
+    let mut sums = Sums {
+        force: CompensatedSum3::new(),
+        force_acc: CompensatedSum3::new(),
+        torque: CompensatedSum3::new(),
+        torque_acc: CompensatedSum3::new(),
+        energy: CompensatedSum::new(),
+        abs: [0.0; 5],
+        bound: 0.0,
+        evaluations: 0,
+    };
+    let mut batch = Batch {
+        nodes: Vec::with_capacity(NODES_PER_BATCH),
+        points: Vec::with_capacity(NODES_PER_BATCH),
+        fields: Vec::with_capacity(NODES_PER_BATCH),
+    };
     for f in faces {
         let k = geometry.pieces(f, level);
         mesh.face_nodes(f, k, rule, |x, w| {
-            let (field, b) = source.field(&(q * x + t));
-            bound = bound.max(b);
-            evaluations += 1;
-            let a = qt * field.acceleration;
-            let dphi = field.potential - phi0;
-            let r2 = x.norm_squared();
-            let fw = w * dphi;
-            force.add(&fw);
-            abs[0] += fw.norm();
-            let tw = x.cross(w) * dphi;
-            torque.add(&tw);
-            abs[1] += tw.norm();
-            let aw = a.dot(w);
-            let fa = x * aw;
-            force_acc.add(&fa);
-            abs[3] += fa.norm();
-            let ta = w.cross(&a) * r2;
-            torque_acc.add(&ta);
-            abs[4] += ta.norm();
-            let (e1, e2) = (field.potential * x.dot(w), 0.5 * r2 * aw);
-            energy.add(e1 + e2);
-            abs[2] += e1.abs() + e2.abs();
+            batch.nodes.push((*x, *w));
+            batch.points.push(q * x + t);
+            if batch.nodes.len() == NODES_PER_BATCH {
+                batch.flush(&mut sums, source, &qt, phi0);
+            }
         });
     }
+    batch.flush(&mut sums, source, &qt, phi0);
     Partial {
-        force: force.value(),
-        force_acc: force_acc.value(),
-        torque: torque.value(),
-        torque_acc: torque_acc.value(),
-        energy: energy.value(),
-        abs,
-        bound,
-        evaluations,
+        force: sums.force.value(),
+        force_acc: sums.force_acc.value(),
+        torque: sums.torque.value(),
+        torque_acc: sums.torque_acc.value(),
+        energy: sums.energy.value(),
+        abs: sums.abs,
+        bound: sums.bound,
+        evaluations: sums.evaluations,
     }
 }
 
