@@ -848,3 +848,80 @@ impl InteractionModel for SceneModel {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::state::BodyState;
+    use std::sync::Arc;
+    use surfgrav_potentials::{Field, Potential, Region, Spheroid};
+    use surfgrav_surfaces::interaction::BodyShape;
+    use surfgrav_surfaces::EllipsoidSurface;
+
+    /// A spheroid behind a user's type, reporting its symmetry or not.
+    #[derive(Debug)]
+    struct UserSpheroid {
+        inner: Spheroid,
+        report: bool,
+    }
+
+    impl Potential for UserSpheroid {
+        fn mass(&self) -> Real {
+            self.inner.mass()
+        }
+        fn gravitational_constant(&self) -> Real {
+            self.inner.gravitational_constant()
+        }
+        fn volume(&self) -> Real {
+            self.inner.volume()
+        }
+        fn bounding_radius(&self) -> Real {
+            self.inner.bounding_radius()
+        }
+        fn region(&self, r: &Vec3) -> Region {
+            self.inner.region(r)
+        }
+        fn field(&self, r: &Vec3) -> Field {
+            self.inner.field(r)
+        }
+        fn inertia(&self) -> Option<InertiaTensor> {
+            self.inner.inertia()
+        }
+        fn symmetry(&self) -> FieldSymmetry {
+            if self.report {
+                self.inner.symmetry()
+            } else {
+                FieldSymmetry::None
+            }
+        }
+    }
+
+    fn user_spheroid(report: bool) -> Body {
+        let inner = Spheroid::new(1.0, 0.25, 1.0).unwrap();
+        let shape = BodyShape::Solid(EllipsoidSurface::spheroid(1.0, 0.25).unwrap());
+        Body::custom(Arc::new(UserSpheroid { inner, report }), shape).unwrap()
+    }
+
+    /// The model's symmetry is the body's reported one: a user's spheroid that reports its
+    /// symmetry makes the founding paper's coplanar scene central (the tabulated fast path,
+    /// the built-in pair's contact distance 2); one that reports nothing keeps the direct path.
+    #[test]
+    fn the_symmetry_is_the_reported_one() {
+        let builtin = Body::spheroid(Spheroid::new(1.0, 0.25, 1.0).unwrap()).unwrap();
+        assert_eq!(symmetry(&builtin), Symmetry::Axial);
+        assert_eq!(symmetry(&user_spheroid(true)), Symmetry::Axial);
+        assert_eq!(symmetry(&user_spheroid(false)), Symmetry::None);
+        let initial = TwoBodyState::new(
+            BodyState::new(Vec3::new(-3.5, 0.0, 0.0), Vec3::new(0.0, 0.2, 0.0)),
+            BodyState::new(Vec3::new(3.5, 0.0, 0.0), Vec3::new(0.0, -0.2, 0.0)),
+        );
+        let settings = SceneSettings::default();
+        let (pa, pb) = (initial.body_a.pose(), initial.body_b.pose());
+        let reported =
+            SceneModel::build(user_spheroid(true), builtin.clone(), &initial, &settings).unwrap();
+        assert!(reported.is_interpolated());
+        assert_eq!(reported.contact_distance(&pa, &pb), Some(2.0));
+        let silent = SceneModel::build(user_spheroid(false), builtin, &initial, &settings).unwrap();
+        assert!(!silent.is_interpolated());
+    }
+}
