@@ -187,11 +187,49 @@ pub fn vector(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec3> {
     Ok(Vec3::new(v[0], v[1], v[2]))
 }
 
+/// Why numbers are not an orientation (messages name the argument, `what`).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum OrientationError {
+    /// A NaN or infinite number.
+    #[error("{what} must be finite numbers, got {values:?}")]
+    NotFinite {
+        /// The argument's name.
+        what: String,
+        /// The numbers given.
+        values: Vec<f64>,
+    },
+    /// A quaternion whose norm is not 1 within [`UNIT_TOLERANCE`].
+    #[error(
+        "{what} as a quaternion (w, x, y, z) must have unit norm, got norm {norm}; normalise \
+         it, or give a rotation vector (3 numbers)"
+    )]
+    NotUnit {
+        /// The argument's name.
+        what: String,
+        /// Its norm.
+        norm: f64,
+    },
+    /// Neither 3 nor 4 numbers.
+    #[error(
+        "{what} must be a rotation vector (3 numbers, axis × angle in radians) or a unit \
+         quaternion (4 numbers, w, x, y, z), got {count} numbers"
+    )]
+    WrongCount {
+        /// The argument's name.
+        what: String,
+        /// How many numbers were given.
+        count: usize,
+    },
+}
+
 /// An orientation (body frame → world frame) from 3 numbers (a rotation vector: axis × angle,
 /// radians) or 4 (a unit quaternion, scalar first: w, x, y, z).
-pub fn orientation_from(v: &[f64], what: &str) -> Result<UnitQuaternion<f64>, String> {
+pub fn orientation_from(v: &[f64], what: &str) -> Result<UnitQuaternion<f64>, OrientationError> {
     if !v.iter().all(|x| x.is_finite()) {
-        return Err(format!("{what} must be finite numbers, got {v:?}"));
+        return Err(OrientationError::NotFinite {
+            what: what.into(),
+            values: v.to_vec(),
+        });
     }
     match v.len() {
         3 => Ok(UnitQuaternion::from_scaled_axis(Vec3::new(
@@ -201,17 +239,17 @@ pub fn orientation_from(v: &[f64], what: &str) -> Result<UnitQuaternion<f64>, St
             let q = Quaternion::new(v[0], v[1], v[2], v[3]);
             let norm = q.norm();
             if (norm - 1.0).abs() > UNIT_TOLERANCE {
-                return Err(format!(
-                    "{what} as a quaternion (w, x, y, z) must have unit norm, got norm {norm}; \
-                     normalise it, or give a rotation vector (3 numbers)"
-                ));
+                return Err(OrientationError::NotUnit {
+                    what: what.into(),
+                    norm,
+                });
             }
             Ok(UnitQuaternion::new_normalize(q))
         }
-        n => Err(format!(
-            "{what} must be a rotation vector (3 numbers, axis × angle in radians) or a unit \
-             quaternion (4 numbers, w, x, y, z), got {n} numbers"
-        )),
+        count => Err(OrientationError::WrongCount {
+            what: what.into(),
+            count,
+        }),
     }
 }
 
@@ -222,7 +260,7 @@ pub fn orientation(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<UnitQ
         Some(o) if o.is_none() => Ok(UnitQuaternion::identity()),
         Some(o) => {
             let v = numbers(o, what, "3 or 4")?;
-            orientation_from(&v, what).map_err(InputError::new_err)
+            orientation_from(&v, what).map_err(|e| InputError::new_err(e.to_string()))
         }
     }
 }
@@ -258,7 +296,10 @@ pub fn orientations(
     let flat = rows(obj, what, shape[1])?;
     flat.chunks_exact(shape[1])
         .enumerate()
-        .map(|(i, row)| orientation_from(row, &format!("{what}[{i}]")).map_err(InputError::new_err))
+        .map(|(i, row)| {
+            orientation_from(row, &format!("{what}[{i}]"))
+                .map_err(|e| InputError::new_err(e.to_string()))
+        })
         .collect()
 }
 

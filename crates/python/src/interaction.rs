@@ -9,7 +9,7 @@ use pyo3::types::PyDict;
 use rayon::prelude::*;
 use surfgrav_potentials::{Pose, Vec3};
 use surfgrav_surfaces::interaction::{
-    Interaction as EngineInteraction, InteractionEngine, InteractionOptions,
+    Interaction as EngineInteraction, InteractionEngine, InteractionError, InteractionOptions,
 };
 
 use crate::arrays;
@@ -111,17 +111,15 @@ impl Interaction {
     }
 }
 
-/// One interaction, with the engine's message on failure (the CLI's: exit code 2).
+/// One interaction; the engine's error says why not (its message is the CLI's: exit code 2).
 fn one(
     engine: &mut InteractionEngine,
     a: &Core,
     b: &Core,
     pose_a: &Pose,
     pose_b: &Pose,
-) -> Result<EngineInteraction, String> {
-    engine
-        .interact(&a.engine, pose_a, &b.engine, pose_b)
-        .map_err(|e| e.to_string())
+) -> Result<EngineInteraction, InteractionError> {
+    engine.interact(&a.engine, pose_a, &b.engine, pose_b)
 }
 
 /// Force, torques and mutual potential energy of bodies `a` and `b`.
@@ -158,7 +156,7 @@ pub fn interact(
             position,
             rotation: qb,
         };
-        one(&mut engine, &ca, &cb, &pose_a, &pose_b).map_err(Failure::Input)
+        one(&mut engine, &ca, &cb, &pose_a, &pose_b).map_err(|e| input(e.to_string()))
     })?;
     Ok(Interaction { result })
 }
@@ -272,11 +270,10 @@ fn batch(
     let threads = rayon::current_num_threads().max(1);
     let chunk = n.div_ceil(4 * threads).clamp(1, 64);
     let rows: Vec<usize> = (0..n).collect();
-    let chunks: Vec<Result<Vec<EngineInteraction>, (usize, String)>> = rows
+    let chunks: Vec<Result<Vec<EngineInteraction>, (usize, InteractionError)>> = rows
         .par_chunks(chunk)
         .map(|idx| {
-            let mut engine =
-                InteractionEngine::new(options).map_err(|e| (idx[0], e.to_string()))?;
+            let mut engine = InteractionEngine::new(options).map_err(|e| (idx[0], e))?;
             idx.iter()
                 .map(|&i| {
                     let p = positions[i];

@@ -73,7 +73,7 @@ use surfgrav_scenarios::sweep::RESULT_COLUMNS as COLUMNS;
 fn outcome_dict<'py>(
     py: Python<'py>,
     index: usize,
-    outcome: &Result<TaskResult, String>,
+    outcome: &Result<TaskResult, SweepError>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("task", index)?;
@@ -105,7 +105,7 @@ fn outcome_dict<'py>(
             for c in &COLUMNS[..COLUMNS.len() - 1] {
                 d.set_item(*c, py.None())?;
             }
-            d.set_item("message", m)?;
+            d.set_item("message", m.to_string())?;
         }
     }
     Ok(d)
@@ -147,7 +147,7 @@ pub fn _sweep_task(
             .and_then(|f| f.build(&scene_text, &label))
             .map_err(|e| input(e.to_string()))?;
         let Some(root) = out else {
-            return Ok(run_scene(&scene).map_err(|e| e.to_string()));
+            return Ok(run_scene(&scene));
         };
         let parameters: toml::Table = toml::from_str(parameters.as_deref().unwrap_or(""))
             .map_err(|e| input(format!("task {index:05}: parameters: {e}")))?;
@@ -161,12 +161,13 @@ pub fn _sweep_task(
             trajectory,
             figures,
         };
-        Ok(run_task(&root, &task, files).map_err(|e| e.to_string()))
+        Ok(run_task(&root, &task, files))
     })?;
     Ok(outcome_dict(py, index, &outcome)?.unbind())
 }
 
-fn result_of(d: &Bound<'_, PyDict>) -> PyResult<Result<TaskResult, String>> {
+/// A task's outcome from its dict; a failure's message comes back as the run's error.
+fn result_of(d: &Bound<'_, PyDict>) -> PyResult<Result<TaskResult, SweepError>> {
     fn get<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
         match d.get_item(key)? {
             Some(v) => v.extract::<T>().map_err(Into::into),
@@ -177,7 +178,8 @@ fn result_of(d: &Bound<'_, PyDict>) -> PyResult<Result<TaskResult, String>> {
     }
     let status: String = get(d, "status")?;
     if status != "done" {
-        return Ok(Err(get::<Option<String>>(d, "message")?.unwrap_or_default()));
+        let message = get::<Option<String>>(d, "message")?.unwrap_or_default();
+        return Ok(Err(SweepError::Run(RunError::Failed(message))));
     }
     Ok(Ok(TaskResult {
         mass_a: get(d, "mass_a")?,
@@ -224,7 +226,6 @@ pub fn _sweep_finish(
             if folder.results.contains_key(&index) {
                 continue;
             }
-            let outcome = outcome.map_err(|m| SweepError::Run(RunError::Failed(m)));
             folder.record(index, outcome);
         }
         folder

@@ -726,7 +726,7 @@ fn run_command(
                 bar.set_position(tick);
             }
         },
-        &mut |row| Ok(csv.write(row)?),
+        &mut |row| csv.write(row),
     );
     bar.finish_and_clear();
     let record = record?;

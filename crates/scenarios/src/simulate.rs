@@ -31,7 +31,7 @@ use surfgrav_dynamics::{
 use surfgrav_potentials::{Real, Vec3};
 use surfgrav_surfaces::interaction::{InteractionError as EngineError, InteractionOptions};
 
-use crate::output::{Cadence, OutputPlan};
+use crate::output::{Cadence, OutputError, OutputPlan};
 use crate::scene::Scene;
 use crate::spec::BuiltBody;
 
@@ -368,13 +368,13 @@ fn energy_and_momentum(
 
 /// The written rows: handed to the sink as they come, kept thinned for figures.
 struct RowRecorder<'s> {
-    sink: &'s mut dyn FnMut(&OutputRow) -> Result<(), String>,
+    sink: &'s mut dyn FnMut(&OutputRow) -> Result<(), OutputError>,
     written: usize,
     last_time: Option<Real>,
     kept: Vec<OutputRow>,
     stride: usize,
     last_kept: Option<OutputRow>,
-    error: Option<String>,
+    error: Option<OutputError>,
 }
 
 impl RowRecorder<'_> {
@@ -428,12 +428,15 @@ pub fn simulate(
     scene: &Scene,
     prepared: &PreparedModel,
     progress: &mut dyn FnMut(Real),
-    sink: &mut dyn FnMut(&OutputRow) -> Result<(), String>,
+    sink: &mut dyn FnMut(&OutputRow) -> Result<(), OutputError>,
 ) -> Result<RunRecord, RunError> {
     let start = Instant::now();
     let model = prepared.model();
     let plan = OutputPlan::of(scene);
-    let mut integrator = scene.integrator.make().map_err(RunError::Input)?;
+    let mut integrator = scene
+        .integrator
+        .make()
+        .map_err(|e| RunError::Input(e.to_string()))?;
     integrator
         .set_escape_distance(scene.escape_distance)
         .map_err(|e| RunError::Input(e.to_string()))?;
@@ -530,8 +533,8 @@ pub fn simulate(
             angular_momentum_vector,
         });
     }
-    if let Some(message) = rows.error.take() {
-        return Err(RunError::Failed(message));
+    if let Some(e) = rows.error.take() {
+        return Err(RunError::Failed(e.to_string()));
     }
     let (te, tj) = steps
         .trackers

@@ -1418,7 +1418,7 @@ pub fn run_task(root: &Path, task: &Task, files: TaskFiles) -> Result<TaskResult
         None
     };
     let record = simulate::simulate(scene, &prepared, &mut |_| {}, &mut |row| match &mut csv {
-        Some(w) => w.write(row).map_err(|e| e.to_string()),
+        Some(w) => w.write(row),
         None => Ok(()),
     })?;
     if let Some(w) = csv {
