@@ -189,7 +189,8 @@ fn polyhedron(c: &mut Criterion) {
     group.finish();
 
     // The local expansion over KW4 Beta's ball (296.1 m) 2540 m away, at the bound the KW4
-    // pair asks at 1e-10 (6e-13): construction (moment translation) and one point.
+    // pair asks at 1e-10 (6e-13): construction (moment translation), one point, and 64 points
+    // four at a time (the interaction's batch).
     let ball = centre + Vec3::new(2540.0, 0.0, 0.0);
     let local = body.local_expansion(&ball, 296.1, 6e-13).unwrap();
     let inside = ball + dir * 250.0;
@@ -200,6 +201,14 @@ fn polyhedron(c: &mut Criterion) {
     );
     group.bench_function(format!("field N={}", local.degree()), |b| {
         b.iter(|| black_box(&local).field(black_box(&inside)))
+    });
+    let nodes: Vec<Vec3> = (0..64)
+        .map(|k| ball + Vec3::new((0.3 * k as f64).cos(), (0.3 * k as f64).sin(), 0.5) * 200.0)
+        .collect();
+    let mut out = vec![local.field(&inside); nodes.len()];
+    group.throughput(Throughput::Elements(nodes.len() as u64));
+    group.bench_function(format!("fields_into 64 points N={}", local.degree()), |b| {
+        b.iter(|| black_box(&local).fields_into(black_box(&nodes), &mut out))
     });
     group.finish();
 
