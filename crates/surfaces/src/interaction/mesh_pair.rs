@@ -65,8 +65,9 @@
 //! | 1e-12 | 226, 1.7 ms, 1.0e-13, 2.1e-15 | 57,302, 58 ms, 9.8e-15, 5.2e-15 |
 //!
 //! $V$ over either surface agrees to 1e-14 (Didymos) and 6e-15 (KW4). The node loop runs in
-//! parallel over chunks of faces, the local expansion four nodes at a time. The first evaluation with a polyhedron field also builds its
-//! degree-60 moments (Didymos ~0.1 s, Alpha ~0.6 s).
+//! parallel over chunks of faces, the local expansion four nodes at a time. The first
+//! evaluation with a polyhedron field also builds its degree-60 moments (Didymos ~0.1 s,
+//! Alpha ~0.6 s).
 //!
 //! # Contact
 //!
