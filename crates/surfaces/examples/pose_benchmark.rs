@@ -141,6 +141,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let m = measure(&primary, &pose_a, &secondary, &pose_b, options, None, 0.002)?;
         let (reference, _) = independent_reference(&primary, &pose_a, &secondary, &pose_b, 1e-13)?;
         let error = interaction_error(&m.interaction, &reference);
+        if verbose {
+            println!(
+                "KW4 tilted: {:.1} µs, {} evaluations, level {:?}, over {:?}, estimate {:.1e}, true error {error:.1e}",
+                m.seconds * 1e6,
+                m.evaluations,
+                m.interaction.level,
+                m.interaction.integrated_over,
+                m.error_estimate
+            );
+        }
         tilted.push((m.seconds * 1e6, m.evaluations, error, m.error_estimate));
     }
     tilted.sort_by(|a, b| a.0.total_cmp(&b.0));

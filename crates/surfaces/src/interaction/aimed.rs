@@ -339,7 +339,16 @@ pub(crate) fn nearest_on_ellipsoid(axes: &Vec3, q: &Vec3) -> Vec3 {
         return q;
     }
     // f is convex and decreasing for t > 0: Newton from the left converges monotonically.
-    let mut t = 0.0;
+    // Start at a lower bound of the root: with a_i² + t ≤ a_max² + t, f(t) = 0 gives
+    // (a_max² + t)² ≥ Σ a_i² q_i² (far points need few steps from there, not ~log₁.₅(t/a²)).
+    let (mut weighted, mut largest) = (0.0, 0.0);
+    for i in 0..3 {
+        if axes[i] > 0.0 {
+            weighted += (axes[i] * q[i]).powi(2);
+            largest = Real::max(largest, axes[i] * axes[i]);
+        }
+    }
+    let mut t = (weighted.sqrt() - largest).max(0.0);
     for _ in 0..100 {
         let (value, slope) = f(t);
         if slope >= 0.0 || slope.is_nan() {

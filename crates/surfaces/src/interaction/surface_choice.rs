@@ -101,13 +101,12 @@ impl Placement {
             }
             _ => None,
         };
-        let lamina_aim =
-            match x.shape() {
-                BodyShape::Disk(l) if wanted && !self.node_check => Some(
-                    aimed::lamina::lamina_aim(l, y, &self.map, options.relative_tolerance),
-                ),
-                _ => None,
-            };
+        let lamina_aim = match x.shape() {
+            BodyShape::Disk(l) if wanted && !self.node_check => {
+                aimed::lamina::lamina_aim(l, y, &self.map, options.relative_tolerance)
+            }
+            _ => None,
+        };
         Self {
             aim,
             lamina_aim,
