@@ -133,7 +133,7 @@ impl Scene {
         let mut scene = self.scene.clone();
         scene
             .override_with(t_end, dt, method, tolerance)
-            .map_err(InputError::new_err)?;
+            .map_err(|e| InputError::new_err(e.to_string()))?;
         Ok(Scene { scene })
     }
 

@@ -445,7 +445,7 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
 fn field_commands(command: Command) -> Result<String, UserError> {
     match command {
         Command::Potential { body, at, g } => {
-            let g = parse_positive("--g", &g).map_err(UserError)?;
+            let g = parse_positive("--g", &g)?;
             let spec: Spec = body.parse()?;
             let is_disk = spec.kind.name == "disk";
             let body = spec.build(g)?.into_potential();
@@ -491,8 +491,8 @@ fn field_commands(command: Command) -> Result<String, UserError> {
                 body_b.unwrap_or_default(),
                 position.unwrap_or_default(),
             );
-            let g = parse_positive("--g", &g).map_err(UserError)?;
-            let tolerance = parse_positive("--tolerance", &tolerance).map_err(UserError)?;
+            let g = parse_positive("--g", &g)?;
+            let tolerance = parse_positive("--tolerance", &tolerance)?;
             let a = body_a
                 .parse::<Spec>()
                 .and_then(|s| s.build(g))
@@ -591,7 +591,7 @@ impl Overrides {
         tolerance: Option<String>,
     ) -> Result<Self, CliError> {
         let positive = |name: &'static str, v: Option<String>| {
-            v.map(|text| parse_positive(name, &text).map_err(CliError::Input))
+            v.map(|text| parse_positive(name, &text).map_err(|e| CliError::Input(e.to_string())))
                 .transpose()
         };
         let t_end = t_end
@@ -655,7 +655,7 @@ pub fn load_scene(which: &str, overrides: &Overrides) -> Result<Scene, CliError>
             overrides.integrator,
             overrides.tolerance,
         )
-        .map_err(CliError::Input)?;
+        .map_err(|e| CliError::Input(e.to_string()))?;
     Ok(scene)
 }
 
@@ -704,7 +704,10 @@ fn run_command(
             eprintln!("{note}");
         }
     }
-    scene.integrator.make().map_err(CliError::Input)?;
+    scene
+        .integrator
+        .make()
+        .map_err(|e| CliError::Input(e.to_string()))?;
     // The output folder is checked and created (hidden, under a temporary name) before the
     // computation, so a bad --out costs nothing and the trajectory can be streamed into it.
     let folder = output::choose_folder(out, &scene.name).map_err(|e| CliError::Input(e.into()))?;

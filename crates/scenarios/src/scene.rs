@@ -11,9 +11,12 @@
 //! #                                     # 100 initial separations; inf: never)
 //!
 //! [body_a]
-//! shape = "spheroid"        # point | sphere | spheroid | ellipsoid | disk
+//! shape = "spheroid"        # point | sphere | spheroid | ellipsoid | disk | polyhedron
 //! equatorial_radius = 1.0   # spheroid: equatorial_radius, polar_radius (symmetry axis = body z)
-//! polar_radius = 0.25       # sphere, disk: radius; ellipsoid: semi_axes = [a, b, c]
+//! polar_radius = 0.25       # sphere, disk: radius; ellipsoid: semi_axes = [a, b, c];
+//!                           # polyhedron: mesh = "a.obj" (relative to this file's folder),
+//!                           # mesh_units = "km", principal_axes = true; a vertex CSV names its
+//!                           # facets too: mesh_facets = "f.csv" (crate::kinds::polyhedron)
 //! mass = 1.0                # or density = ... (solids only)
 //! position = [-3.5, 0.0, 0.0]
 //! velocity = [0.0, 0.2, 0.0]
@@ -74,7 +77,9 @@ use std::fmt;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
-use surfgrav_dynamics::{BodyState, Integrator, IntegratorKind, TwoBodyState};
+use surfgrav_dynamics::{
+    BodyState, Integrator, IntegratorChoiceError, IntegratorKind, TwoBodyState,
+};
 use surfgrav_potentials::{Real, Vec3};
 use toml::Spanned;
 
@@ -138,19 +143,6 @@ pub struct BodyFile {
     /// `angular_velocity`.
     pub angular_velocity_body: Option<Spanned<[Real; 3]>>,
 }
-
-/// The keys every body has, besides the kind's own.
-const COMMON_KEYS: [&str; 9] = [
-    "shape",
-    "mass",
-    "density",
-    "position",
-    "velocity",
-    "orientation",
-    "angular_velocity",
-    "spin",
-    "angular_velocity_body",
-];
 
 impl<'de> Deserialize<'de> for BodyFile {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
@@ -255,19 +247,27 @@ impl BodyFile {
                 format!("unknown variant `{name}`, expected one of {expected}"),
             ));
         }
+        let kind = kinds::find(name);
         for (key, value) in &self.keys {
             if !kinds::is_scene_key(key) {
-                let expected = COMMON_KEYS
-                    .iter()
-                    .copied()
-                    .chain(kinds::all_scene_keys())
-                    .map(|k| format!("`{k}`"))
-                    .collect::<Vec<_>>()
-                    .join(", ");
+                // This shape's keys, then every body's.
+                let mut takes: Vec<String> = Vec::new();
+                if let Some(k) = kind.filter(|k| !k.keys.is_empty()) {
+                    takes.push(k.scene_keys_text());
+                }
+                takes.push(if kind.is_some_and(|k| k.solid) {
+                    "mass or density".into()
+                } else {
+                    "mass".into()
+                });
+                takes.push(
+                    "position, velocity, orientation, angular_velocity or angular_velocity_body"
+                        .into(),
+                );
                 return Err(loc.at(
                     value,
                     &format!("{table}.{key}"),
-                    format!("unknown field `{key}`, expected one of {expected}"),
+                    format!("unknown field `{key}`: a {name} takes {}", takes.join(", ")),
                 ));
             }
         }
@@ -430,12 +430,11 @@ impl IntegratorChoice {
     ///
     /// # Errors
     /// The integrator's own parameter errors.
-    pub fn make(&self) -> Result<Box<dyn Integrator>, String> {
-        let built = match *self {
+    pub fn make(&self) -> Result<Box<dyn Integrator>, IntegratorChoiceError> {
+        match *self {
             Self::Fixed { method, step } => method.build(step, Real::NAN),
             Self::Adaptive { method, tolerance } => method.build(Real::NAN, tolerance),
-        };
-        built.map_err(|e| e.to_string())
+        }
     }
 }
 
@@ -572,8 +571,8 @@ impl SceneFile {
     ///
     /// # Errors
     /// Only if the TOML serialiser fails (it does not for these structs).
-    pub fn to_toml(&self) -> Result<String, String> {
-        toml::to_string(self).map_err(|e| e.to_string())
+    pub fn to_toml(&self) -> Result<String, toml::ser::Error> {
+        toml::to_string(self)
     }
 
     /// Validates every field and their combinations and builds the scene. `source` is the text
@@ -1116,72 +1115,64 @@ impl Scene {
         step: Option<Real>,
         method: Option<IntegratorName>,
         tolerance: Option<Real>,
-    ) -> Result<(), String> {
-        let positive = |name: &str, v: Real| {
+    ) -> Result<(), OverrideError> {
+        let positive = |name: &'static str, v: Real| {
             if v.is_finite() && v > 0.0 {
                 Ok(v)
             } else {
-                Err(format!(
-                    "{name} must be a positive finite number, got {}",
-                    compact(v)
-                ))
+                Err(OverrideError::NotPositive { name, value: v })
             }
         };
         if let Some(t) = t_end {
             if !(t.is_finite() && t > self.t_start) {
-                return Err(format!(
-                    "--t-end must be finite and greater than the start time {}, got {}",
-                    compact(self.t_start),
-                    compact(t)
-                ));
+                return Err(OverrideError::EndNotAfterStart {
+                    start: self.t_start,
+                    value: t,
+                });
             }
             self.t_end = t;
         }
         let step_given = step.is_some();
         let method = method.unwrap_or(self.integrator.method());
+        let name = method.name();
         if method.is_adaptive() {
             if step.is_some() {
-                return Err(format!(
-                    "--dt does not apply to the adaptive integrator {}: give --tolerance",
-                    method.name()
-                ));
+                return Err(OverrideError::StepForAdaptive { method: name });
             }
             let tolerance = match (tolerance, self.integrator) {
                 (Some(t), _) => {
                     let t = positive("--tolerance", t)?;
-                    adaptive_tolerance_in_range(t).map_err(|m| format!("--tolerance: {m}"))?;
+                    adaptive_tolerance_in_range(t).map_err(|message| {
+                        OverrideError::OutOfRange {
+                            flag: "--tolerance",
+                            message,
+                        }
+                    })?;
                     t
                 }
                 (None, IntegratorChoice::Adaptive { tolerance, .. }) => tolerance,
                 (None, IntegratorChoice::Fixed { .. }) => {
-                    return Err(format!(
-                        "the adaptive integrator {} needs --tolerance",
-                        method.name()
-                    ))
+                    return Err(OverrideError::NeedsTolerance { method: name })
                 }
             };
             self.integrator = IntegratorChoice::Adaptive { method, tolerance };
         } else {
             if tolerance.is_some() {
-                return Err(format!(
-                    "--tolerance does not apply to the fixed-step integrator {}: give --dt",
-                    method.name()
-                ));
+                return Err(OverrideError::ToleranceForFixed { method: name });
             }
             let step = match (step, self.integrator) {
                 (Some(s), _) => positive("--dt", s)?,
                 (None, IntegratorChoice::Fixed { step, .. }) => step,
                 (None, IntegratorChoice::Adaptive { .. }) => {
-                    return Err(format!(
-                        "the fixed-step integrator {} needs --dt",
-                        method.name()
-                    ))
+                    return Err(OverrideError::NeedsStep { method: name })
                 }
             };
             self.integrator = IntegratorChoice::Fixed { method, step };
-            step_fits(step, self.t_end - self.t_start).map_err(|m| {
-                let flag = if step_given { "--dt" } else { "--t-end" };
-                format!("{flag}: {m}")
+            step_fits(step, self.t_end - self.t_start).map_err(|message| {
+                OverrideError::OutOfRange {
+                    flag: if step_given { "--dt" } else { "--t-end" },
+                    message,
+                }
             })?;
             let time_scale = dynamical_time(
                 &self.initial,
@@ -1189,10 +1180,69 @@ impl Scene {
                 &self.body_b,
                 self.gravitational_constant,
             );
-            step_resolves_orbit(step, time_scale).map_err(|m| format!("--dt: {m}"))?;
+            step_resolves_orbit(step, time_scale).map_err(|message| OverrideError::OutOfRange {
+                flag: "--dt",
+                message,
+            })?;
         }
         Ok(())
     }
+}
+
+/// Why a command-line override of a scene ([`Scene::override_with`]) is refused; the message
+/// names the option and what to change.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum OverrideError {
+    /// A step or tolerance that is not a positive finite number.
+    #[error("{name} must be a positive finite number, got {}", compact(*.value))]
+    NotPositive {
+        /// The option.
+        name: &'static str,
+        /// The value given.
+        value: Real,
+    },
+    /// An end time not after the start.
+    #[error("--t-end must be finite and greater than the start time {}, got {}", compact(*.start), compact(*.value))]
+    EndNotAfterStart {
+        /// The scene's start time.
+        start: Real,
+        /// The end time given.
+        value: Real,
+    },
+    /// A step for an adaptive method.
+    #[error("--dt does not apply to the adaptive integrator {method}: give --tolerance")]
+    StepForAdaptive {
+        /// The method.
+        method: &'static str,
+    },
+    /// An adaptive method without a tolerance.
+    #[error("the adaptive integrator {method} needs --tolerance")]
+    NeedsTolerance {
+        /// The method.
+        method: &'static str,
+    },
+    /// A tolerance for a fixed-step method.
+    #[error("--tolerance does not apply to the fixed-step integrator {method}: give --dt")]
+    ToleranceForFixed {
+        /// The method.
+        method: &'static str,
+    },
+    /// A fixed-step method without a step.
+    #[error("the fixed-step integrator {method} needs --dt")]
+    NeedsStep {
+        /// The method.
+        method: &'static str,
+    },
+    /// A step or tolerance out of the range that can work (the message says why and what to
+    /// choose).
+    #[error("{flag}: {message}")]
+    OutOfRange {
+        /// The option at fault.
+        flag: &'static str,
+        /// Why, and what to choose.
+        message: String,
+    },
 }
 
 /// A fixed step must not be longer than the run: a step of 500 over t = 300 would jump the
@@ -1466,6 +1516,7 @@ mod tests {
         assert!(s
             .override_with(None, None, Some(IntegratorName::Rk4), None)
             .unwrap_err()
+            .to_string()
             .contains("--dt"));
         assert!(s.override_with(Some(-1.0), None, None, None).is_err());
         assert!(s.override_with(None, Some(0.1), None, None).is_err());

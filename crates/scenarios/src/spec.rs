@@ -113,6 +113,14 @@ pub enum SpecError {
         /// What to change.
         message: String,
     },
+    /// An option that must be a positive finite number.
+    #[error("{what} must be a positive finite number, got `{value}`")]
+    NotPositive {
+        /// Which option.
+        what: &'static str,
+        /// The rejected text.
+        value: String,
+    },
     /// A vector with the wrong number of components or a bad component.
     #[error("{what} must be three comma-separated finite numbers X,Y,Z, got `{value}`")]
     BadVector {
@@ -609,12 +617,16 @@ pub fn parse_vector(what: &'static str, text: &str) -> Result<Vec3, SpecError> {
 }
 
 /// Parses a positive finite number (a gravitational constant, a tolerance).
-pub fn parse_positive(what: &'static str, text: &str) -> Result<f64, String> {
+///
+/// # Errors
+/// [`SpecError::NotPositive`] naming the option.
+pub fn parse_positive(what: &'static str, text: &str) -> Result<f64, SpecError> {
     match text.trim().parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
-        _ => Err(format!(
-            "{what} must be a positive finite number, got `{text}`"
-        )),
+        _ => Err(SpecError::NotPositive {
+            what,
+            value: text.to_string(),
+        }),
     }
 }
 

@@ -252,40 +252,41 @@ pub(crate) fn volume_moments(
     let width = degree + 1;
     let zero = C64::new(0.0, 0.0);
     // S[k][n] = Σ_t V_t h_n(ℓ_k·v₁, ℓ_k·v₂, ℓ_k·v₃), ℓ_k·x = z + i(x cos u_k + y sin u_k).
-    let sums = faces
-        .par_iter()
-        .fold(
-            || vec![zero; samples * width],
-            |mut acc, f| {
-                let [a, b, c] = f.map(|i| (vertices[i as usize] - centre) * scale);
-                let volume = a.dot(&b.cross(&c)) / 6.0;
-                for (k, &(cu, su)) in angles.iter().enumerate() {
-                    let l = |v: &Vec3| C64::new(v.z, v.x * cu + v.y * su);
-                    let (la, lb, lc) = (l(&a), l(&b), l(&c));
-                    let row = &mut acc[k * width..(k + 1) * width];
-                    // h_n of one, two, three variables by the recurrences of Π 1/(1 − a_j t).
-                    let (mut p1, mut p2, mut p3) =
-                        (C64::new(1.0, 0.0), C64::new(1.0, 0.0), C64::new(1.0, 0.0));
-                    row[0] += volume;
-                    for entry in row.iter_mut().skip(1) {
-                        p1 *= la;
-                        p2 = p2 * lb + p1;
-                        p3 = p3 * lc + p2;
-                        *entry += p3 * volume;
+    // Fixed chunks summed in order: the same moments, bit for bit, on every run (a rayon
+    // fold/reduce splits by work stealing, and the rounding of the sums then varied).
+    let chunk_sums: Vec<Vec<C64>> = faces
+        .par_chunks(256)
+        .map(|chunk| {
+            chunk
+                .iter()
+                .fold(vec![zero; samples * width], |mut acc, f| {
+                    let [a, b, c] = f.map(|i| (vertices[i as usize] - centre) * scale);
+                    let volume = a.dot(&b.cross(&c)) / 6.0;
+                    for (k, &(cu, su)) in angles.iter().enumerate() {
+                        let l = |v: &Vec3| C64::new(v.z, v.x * cu + v.y * su);
+                        let (la, lb, lc) = (l(&a), l(&b), l(&c));
+                        let row = &mut acc[k * width..(k + 1) * width];
+                        // h_n of one, two, three variables by the recurrences of Π 1/(1 − a_j t).
+                        let (mut p1, mut p2, mut p3) =
+                            (C64::new(1.0, 0.0), C64::new(1.0, 0.0), C64::new(1.0, 0.0));
+                        row[0] += volume;
+                        for entry in row.iter_mut().skip(1) {
+                            p1 *= la;
+                            p2 = p2 * lb + p1;
+                            p3 = p3 * lc + p2;
+                            *entry += p3 * volume;
+                        }
                     }
-                }
-                acc
-            },
-        )
-        .reduce(
-            || vec![zero; samples * width],
-            |mut x, y| {
-                for (xk, yk) in x.iter_mut().zip(&y) {
-                    *xk += yk;
-                }
-                x
-            },
-        );
+                    acc
+                })
+        })
+        .collect();
+    let mut sums = vec![zero; samples * width];
+    for part in &chunk_sums {
+        for (xk, yk) in sums.iter_mut().zip(part) {
+            *xk += yk;
+        }
+    }
     // ∫_V R_n^m = i^{−m} 6/(n+3)! · (1/K) Σ_k S[k][n] e^{i m u_k}.
     let mut out = vec![zero; count(degree)];
     let mut factor = 1.0; // 6/(n+3)! at n = 0

@@ -237,10 +237,25 @@ pub fn read_mesh(values: &Values) -> Result<Mesh, SpecError> {
             })?;
             parse_vertex_facet(name, text, fname, ftext, unit)
         }
-        (None, None) => Mesh::read_obj(mesh, unit),
+        (None, None) => Mesh::read_obj(mesh, unit).map_err(|e| locate_obj_error(mesh, unit, e)),
         (None, Some(f)) => Mesh::read_vertex_facet_csv(mesh, f, unit),
     };
     read.map_err(wrap)
+}
+
+/// The OBJ reader (tobj) says neither which line it could not parse nor why a file could not
+/// be opened: find the line with [`parse_obj`], or the system's reason.
+fn locate_obj_error(path: &str, unit: LengthUnit, e: MeshError) -> MeshError {
+    let MeshError::Io { .. } = e else {
+        return e;
+    };
+    match std::fs::read_to_string(path) {
+        Err(io) => MeshError::Io {
+            path: path.to_string(),
+            message: io.to_string(),
+        },
+        Ok(text) => parse_obj(path, &text, unit).err().unwrap_or(e),
+    }
 }
 
 fn build(spec: &Spec, g: Real) -> Result<BuiltBody, SpecError> {

@@ -73,6 +73,25 @@
 //!
 //! [`MethodChoice::FixedLevel`] evaluates one table of the ladder, uncertified.
 //!
+//! Methods 1 and 2 are the built-in [`PairRule`]s ([`PointFormula`], [`CoplanarDisks`]),
+//! asked in order before any surface integral; [`InteractionEngine::with_pair_rule`] puts a
+//! user's closed form in front of them. A pair no rule answers goes to the surface integral,
+//! one with no surface to integrate over is [`InteractionError::NoSurface`]. Methods 3 to 5 are
+//! strategies behind one trait (`strategy/`: the ladder, the aimed ladder, the nested rule,
+//! the adaptive rule), over the surface `surface_choice.rs` picks; `assembly.rs` turns their
+//! sums into world-frame results.
+//!
+//! # Body kinds
+//!
+//! The engine asks a body's potential what it is ([`surfgrav_potentials::Potential`]): its
+//! typed view ([`Potential::as_typed`](surfgrav_potentials::Potential::as_typed), a built-in
+//! kind or `Custom`), its symmetry (mirror halving of the nodes, the point formula when
+//! spherical, central pairs in the dynamics), the radius of its singular set (the start
+//! resolution and the surface choice) and the relative cost of its field (the surface choice).
+//! A [`Body::custom`] potential that reports these gets the same methods, evaluation counts and
+//! results as the built-in kind it describes (`tests/interaction_custom.rs`); one that reports
+//! nothing is integrated without those shortcuts.
+//!
 //! **Polyhedra** ([`Body::polyhedron`]) go to [`mesh_pair`]: their own contact test, the point
 //! formula with a sphere, and either the mesh's triangle rules in the partner's field or the
 //! partner's surface in the polyhedron's certified expansion, whichever is predicted cheaper.
