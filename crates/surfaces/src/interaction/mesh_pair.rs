@@ -82,6 +82,7 @@
 use super::body::{Body, BodyShape};
 use super::error::{InteractionError, Side};
 use super::overlap::CONTACT_MARGIN;
+use super::surface_choice::{cancellation_radius, CANCELLATION_RATIO, FAR_FIELD_RATIO};
 use super::{
     Interaction, InteractionEngine, InteractionOptions, Method, MethodChoice, SurfaceChoice,
     ANALYTIC_RELATIVE_ERROR, ROUNDING_PER_TERM,
@@ -979,8 +980,19 @@ fn partner_truncation(x: &Body, poly: &Polyhedron, d: Real, bound: Real, r: &Int
         }
         BodyShape::Solid(e) => {
             let area = e.surface_area();
+            // Far away the engine also sums the acceleration form of the force,
+            // ρ∮x (a·dS), and keeps it where its terms are smaller (FAR_FIELD_RATIO): its
+            // truncation error is then b·ρ|a| s·area, not the Φ form's b·ρ|Φ|·area, which
+            // grows as d/s past the force itself.
+            let far = d > FAR_FIELD_RATIO * s || d > CANCELLATION_RATIO * cancellation_radius(x);
+            let potential_form = rho * phi_max * area;
+            let force = if far {
+                potential_form.min(rho * a_max * s * area)
+            } else {
+                potential_form
+            };
             (
-                rho * phi_max * area,
+                force,
                 rho * phi_max * s * area,
                 rho / 3.0 * area * s * (phi_max + 0.5 * s * a_max),
             )
