@@ -29,17 +29,24 @@ fn a_far_cube_and_ellipsoid_are_certified_over_either_surface_and_agree() {
             run(SurfaceChoice::B),
         );
         for r in [&auto, &over_cube, &over_ellipsoid] {
-            assert!(r.error_estimate <= 1e-12, "{distance}: {}", r.error_estimate);
+            assert!(
+                r.error_estimate <= 1e-12,
+                "{distance}: {}",
+                r.error_estimate
+            );
         }
         // Two independent surfaces: their forces differ by no more than the two estimates
         // (each relative to |F|) plus a few ulps of the sums.
-        let gap = (over_cube.force_on_a - over_ellipsoid.force_on_a).norm()
-            / over_cube.force_on_a.norm();
+        let gap =
+            (over_cube.force_on_a - over_ellipsoid.force_on_a).norm() / over_cube.force_on_a.norm();
         let allowed = over_cube.error_estimate + over_ellipsoid.error_estimate + 1e-15;
         assert!(gap <= allowed, "{distance}: {gap:e} > {allowed:e}");
         // Far away the force tends to the point masses' G m_A m_B / d^2, to O((R/d)^2).
         let point = 2.0 * 1.5 / (distance * distance);
         let bound = 3.0 * (1.75_f64 / distance).powi(2);
-        assert!((auto.force_on_a.x / point - 1.0).abs() <= bound, "{distance}");
+        assert!(
+            (auto.force_on_a.x / point - 1.0).abs() <= bound,
+            "{distance}"
+        );
     }
 }
