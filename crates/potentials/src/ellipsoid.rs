@@ -50,6 +50,13 @@
 //!   the histogram). The iteration stops one step after a relative change below $10^{-9}$ of
 //!   the smallest $A_i$.
 //! - $R_F$ and the three $R_D$ come from one fused duplication loop ([`crate::carlson`]).
+//! - The field is latency-bound, not division-bound: two rewrites that keep the accuracy were
+//!   measured slower against this code on the same machine (criterion, `ellipsoid/near` and
+//!   `batch_of_256/ellipsoid`, alternating runs, load 3-6): the three reciprocals $1/A_i$ of
+//!   each Newton step and of $w_i$ from one shared division (near 204-209 → 241-251 ns,
+//!   batch 39.1 → 41.1 µs) and Halley's iteration with a stop at $10^{-6}$ (fewer steps,
+//!   256 batch points: 2/3/4 steps 129/107/20 → 227/29/0, but near 211 → 224 ns and
+//!   r = 10⁶ 76 → 85 ns; the batch unchanged within noise).
 //!
 //! Measured against the Dirichlet integral at 36 digits (mpmath) for axes 3:2:1, 1:0.5:0.01,
 //! 1:0.3:10⁻⁴, 10⁻⁴:2·10⁻⁴:1, nearly equal axes and SI magnitudes, from $10^{-12}$ above the
