@@ -59,6 +59,39 @@ fn io_error(path: &Path, e: impl std::fmt::Display) -> MeshError {
     }
 }
 
+/// `tobj` says neither which line of an OBJ text it could not read nor why: the first `v` or
+/// `f` line that is not three numbers or three positive indices (`i`, `i/t`, `i/t/n`, `i//n`).
+fn first_obj_problem(name: &str, text: &str) -> Option<MeshError> {
+    let problem = |line: usize, message: String| MeshError::Parse {
+        path: name.to_string(),
+        line,
+        message,
+    };
+    for (k, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                for _ in 0..3 {
+                    let word = words.next().unwrap_or_default();
+                    if let Err(e) = word.parse::<Real>() {
+                        return Some(problem(k + 1, format!("coordinate {word:?}: {e}")));
+                    }
+                }
+            }
+            Some("f") => {
+                for corner in words {
+                    let index = corner.split('/').next().unwrap_or_default();
+                    if !matches!(index.parse::<usize>(), Ok(i) if i > 0) {
+                        return Some(problem(k + 1, format!("vertex index {index:?}")));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
 impl Mesh {
     /// Checks that the mesh bounds a solid: see [`MeshError`] for what is checked.
     pub fn validate(&self) -> Result<(), MeshError> {
@@ -69,13 +102,28 @@ impl Mesh {
     /// are merged), coordinates multiplied by `unit` into metres.
     pub fn read_obj(path: impl AsRef<Path>, unit: LengthUnit) -> Result<Self, MeshError> {
         let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| io_error(path, e))?;
+        Mesh::parse_obj(&path.display().to_string(), &text, unit)
+    }
+
+    /// A Wavefront OBJ text, as [`Mesh::read_obj`] reads a file holding it (`name` names it in
+    /// errors). The text is parsed by `tobj`; where `tobj` refuses it, the first line it could
+    /// not read is named.
+    pub fn parse_obj(name: &str, text: &str, unit: LengthUnit) -> Result<Self, MeshError> {
         let options = tobj::LoadOptions {
             single_index: false,
             triangulate: false,
             ignore_points: true,
             ignore_lines: true,
         };
-        let (models, _materials) = tobj::load_obj(path, &options).map_err(|e| io_error(path, e))?;
+        let no_materials = |_: &Path| Err(tobj::LoadError::OpenFileFailed);
+        let (models, _materials) = tobj::load_obj_buf(&mut text.as_bytes(), &options, no_materials)
+            .map_err(|e| {
+                first_obj_problem(name, text).unwrap_or_else(|| MeshError::Io {
+                    path: name.to_string(),
+                    message: e.to_string(),
+                })
+            })?;
         let scale = unit.metres();
         let mut mesh = Mesh::default();
         for model in models {
@@ -83,7 +131,7 @@ impl Mesh {
             let base = mesh.vertices.len();
             if let Some(k) = m.face_arities.iter().position(|&n| n != 3) {
                 return Err(MeshError::NotTriangle {
-                    path: path.display().to_string(),
+                    path: name.to_string(),
                     face: mesh.faces.len() + k,
                     corners: m.face_arities[k] as usize,
                 });
@@ -115,8 +163,26 @@ impl Mesh {
         let (vpath, fpath) = (vertices.as_ref(), facets.as_ref());
         let vtext = std::fs::read_to_string(vpath).map_err(|e| io_error(vpath, e))?;
         let ftext = std::fs::read_to_string(fpath).map_err(|e| io_error(fpath, e))?;
-        let parse_error = |path: &Path, line: usize, message: String| MeshError::Parse {
-            path: path.display().to_string(),
+        Mesh::parse_vertex_facet_csv(
+            &vpath.display().to_string(),
+            &vtext,
+            &fpath.display().to_string(),
+            &ftext,
+            unit,
+        )
+    }
+
+    /// The vertex/facet CSV pair as texts, as [`Mesh::read_vertex_facet_csv`] reads files
+    /// holding them (`vname`, `fname` name them in errors).
+    pub fn parse_vertex_facet_csv(
+        vname: &str,
+        vtext: &str,
+        fname: &str,
+        ftext: &str,
+        unit: LengthUnit,
+    ) -> Result<Self, MeshError> {
+        let parse_error = |path: &str, line: usize, message: String| MeshError::Parse {
+            path: path.to_string(),
             line,
             message,
         };
@@ -129,7 +195,7 @@ impl Mesh {
             let fields: Vec<&str> = line.split(',').map(str::trim).collect();
             if fields.len() < 4 {
                 return Err(parse_error(
-                    vpath,
+                    vname,
                     k + 1,
                     format!("expected `filler,x,y,z`, got {line:?}"),
                 ));
@@ -137,7 +203,7 @@ impl Mesh {
             let mut xyz = [0.0; 3];
             for (i, x) in xyz.iter_mut().enumerate() {
                 *x = fields[i + 1].parse().map_err(|e| {
-                    parse_error(vpath, k + 1, format!("coordinate {:?}: {e}", fields[i + 1]))
+                    parse_error(vname, k + 1, format!("coordinate {:?}: {e}", fields[i + 1]))
                 })?;
             }
             mesh.vertices.push(Vec3::from(xyz) * scale);
@@ -149,7 +215,7 @@ impl Mesh {
             let fields: Vec<&str> = line.split(',').map(str::trim).collect();
             if fields.len() < 3 || fields[3..].iter().any(|f| !f.is_empty()) {
                 return Err(parse_error(
-                    fpath,
+                    fname,
                     k + 1,
                     format!("expected a triangle `i,j,k,,`, got {line:?}"),
                 ));
@@ -157,11 +223,11 @@ impl Mesh {
             let mut face = [0usize; 3];
             for (i, v) in face.iter_mut().enumerate() {
                 let one_based: usize = fields[i].parse().map_err(|e| {
-                    parse_error(fpath, k + 1, format!("vertex index {:?}: {e}", fields[i]))
+                    parse_error(fname, k + 1, format!("vertex index {:?}: {e}", fields[i]))
                 })?;
                 if one_based == 0 {
                     return Err(parse_error(
-                        fpath,
+                        fname,
                         k + 1,
                         "vertex indices are 1-based; got 0".into(),
                     ));
@@ -293,5 +359,59 @@ impl Mesh {
             *v = Vec3::new(v.x * a, v.y * b, v.z * c);
         }
         Mesh { vertices, faces }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn obj_text_errors_name_the_line() {
+        let e = Mesh::parse_obj("m.obj", "v 0 0 0\nv 1 x 0\n", LengthUnit::Metres).unwrap_err();
+        assert!(
+            e.to_string().starts_with("m.obj:2: coordinate \"x\""),
+            "{e}"
+        );
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3 4\n";
+        let e = Mesh::parse_obj("m.obj", text, LengthUnit::Metres).unwrap_err();
+        assert!(e.to_string().contains("face 0 has 4 corners"), "{e}");
+        let e = Mesh::parse_obj("m.obj", "v 0 0 0\nf 1 0 2\n", LengthUnit::Metres).unwrap_err();
+        assert!(
+            e.to_string().starts_with("m.obj:2: vertex index \"0\""),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn csv_text_errors_name_the_file_and_line() {
+        let e = Mesh::parse_vertex_facet_csv("v.csv", "0,1,2\n", "f.csv", "", LengthUnit::Metres)
+            .unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("v.csv:1: expected `filler,x,y,z`"),
+            "{e}"
+        );
+        let e = Mesh::parse_vertex_facet_csv(
+            "v.csv",
+            "0,0,0,0\n0,1,0,0\n0,0,1,0\n",
+            "f.csv",
+            "1,2,3,,\n0,1,2,,\n",
+            LengthUnit::Metres,
+        )
+        .unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("f.csv:2: vertex indices are 1-based"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn obj_text_in_kilometres() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let mesh = Mesh::parse_obj("t.obj", text, LengthUnit::Kilometres).unwrap();
+        assert_eq!(mesh.vertices[1], Vec3::new(1000.0, 0.0, 0.0));
+        assert_eq!(mesh.faces, vec![[0, 1, 2]]);
     }
 }

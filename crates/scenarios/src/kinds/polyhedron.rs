@@ -226,7 +226,7 @@ pub fn read_mesh(values: &Values) -> Result<Mesh, SpecError> {
         source,
     };
     let read = match (builtin_text(mesh), facets) {
-        (Some((name, text)), None) => parse_obj(name, text, unit),
+        (Some((name, text)), None) => Mesh::parse_obj(name, text, unit),
         (Some((name, text)), Some(f)) => {
             let (fname, ftext) = builtin_text(f).ok_or_else(|| SpecError::Mesh {
                 path: f.to_string(),
@@ -235,27 +235,12 @@ pub fn read_mesh(values: &Values) -> Result<Mesh, SpecError> {
                     message: "a built-in vertex file needs a built-in facet file".into(),
                 },
             })?;
-            parse_vertex_facet(name, text, fname, ftext, unit)
+            Mesh::parse_vertex_facet_csv(name, text, fname, ftext, unit)
         }
-        (None, None) => Mesh::read_obj(mesh, unit).map_err(|e| locate_obj_error(mesh, unit, e)),
+        (None, None) => Mesh::read_obj(mesh, unit),
         (None, Some(f)) => Mesh::read_vertex_facet_csv(mesh, f, unit),
     };
     read.map_err(wrap)
-}
-
-/// The OBJ reader (tobj) says neither which line it could not parse nor why a file could not
-/// be opened: find the line with [`parse_obj`], or the system's reason.
-fn locate_obj_error(path: &str, unit: LengthUnit, e: MeshError) -> MeshError {
-    let MeshError::Io { .. } = e else {
-        return e;
-    };
-    match std::fs::read_to_string(path) {
-        Err(io) => MeshError::Io {
-            path: path.to_string(),
-            message: io.to_string(),
-        },
-        Ok(text) => parse_obj(path, &text, unit).err().unwrap_or(e),
-    }
 }
 
 fn build(spec: &Spec, g: Real) -> Result<BuiltBody, SpecError> {
@@ -303,118 +288,6 @@ fn source_path(values: &Values) -> String {
     }
 }
 
-/// A Wavefront OBJ text (`v x y z` and `f i j k` lines, 1-based; `f i/t/n` forms take the
-/// vertex index; other lines are ignored), as [`Mesh::read_obj`] reads the same file.
-pub fn parse_obj(name: &str, text: &str, unit: LengthUnit) -> Result<Mesh, MeshError> {
-    let scale = unit.metres();
-    let mut mesh = Mesh::default();
-    let error = |line: usize, message: String| MeshError::Parse {
-        path: name.to_string(),
-        line,
-        message,
-    };
-    for (k, line) in text.lines().enumerate() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("v") => {
-                let mut xyz = [0.0; 3];
-                for x in &mut xyz {
-                    let word = words.next().unwrap_or_default();
-                    *x = word
-                        .parse::<Real>()
-                        .map_err(|e| error(k + 1, format!("coordinate {word:?}: {e}")))?;
-                }
-                mesh.vertices.push(Vec3::from(xyz) * scale);
-            }
-            Some("f") => {
-                let corners: Vec<&str> = words.collect();
-                if corners.len() != 3 {
-                    return Err(MeshError::NotTriangle {
-                        path: name.to_string(),
-                        face: mesh.faces.len(),
-                        corners: corners.len(),
-                    });
-                }
-                let mut face = [0usize; 3];
-                for (slot, corner) in face.iter_mut().zip(&corners) {
-                    let index = corner.split('/').next().unwrap_or_default();
-                    let one_based: usize = index
-                        .parse()
-                        .ok()
-                        .filter(|&i| i > 0)
-                        .ok_or_else(|| error(k + 1, format!("vertex index {index:?}")))?;
-                    *slot = one_based - 1;
-                }
-                mesh.faces.push(face);
-            }
-            _ => {}
-        }
-    }
-    Ok(mesh)
-}
-
-/// The Didymos vertex/facet CSV pair as texts, as [`Mesh::read_vertex_facet_csv`] reads the
-/// same files.
-pub fn parse_vertex_facet(
-    vname: &str,
-    vtext: &str,
-    fname: &str,
-    ftext: &str,
-    unit: LengthUnit,
-) -> Result<Mesh, MeshError> {
-    let error = |path: &str, line: usize, message: String| MeshError::Parse {
-        path: path.to_string(),
-        line,
-        message,
-    };
-    let scale = unit.metres();
-    let mut mesh = Mesh::default();
-    for (k, line) in vtext.lines().enumerate() {
-        if line.trim().is_empty() {
-            continue;
-        }
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        if fields.len() < 4 {
-            return Err(error(
-                vname,
-                k + 1,
-                format!("expected `filler,x,y,z`, got {line:?}"),
-            ));
-        }
-        let mut xyz = [0.0; 3];
-        for (i, x) in xyz.iter_mut().enumerate() {
-            *x = fields[i + 1]
-                .parse()
-                .map_err(|e| error(vname, k + 1, format!("coordinate {:?}: {e}", fields[i + 1])))?;
-        }
-        mesh.vertices.push(Vec3::from(xyz) * scale);
-    }
-    for (k, line) in ftext.lines().enumerate() {
-        if line.trim().is_empty() {
-            continue;
-        }
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        if fields.len() < 3 || fields[3..].iter().any(|f| !f.is_empty()) {
-            return Err(error(
-                fname,
-                k + 1,
-                format!("expected a triangle `i,j,k,,`, got {line:?}"),
-            ));
-        }
-        let mut face = [0usize; 3];
-        for (i, v) in face.iter_mut().enumerate() {
-            let one_based: usize = fields[i]
-                .parse()
-                .ok()
-                .filter(|&i| i > 0)
-                .ok_or_else(|| error(fname, k + 1, format!("vertex index {:?}", fields[i])))?;
-            *v = one_based - 1;
-        }
-        mesh.faces.push(face);
-    }
-    Ok(mesh)
-}
-
 /// Whether `path` names a built-in model rather than a file.
 pub fn is_builtin(path: &str) -> bool {
     path.starts_with(BUILTIN_PREFIX)
@@ -446,13 +319,13 @@ mod tests {
     fn builtin_models_equal_the_files() {
         for name in ["kw4_alpha.obj", "kw4_beta.obj"] {
             let (_, text) = builtin_text(&format!("builtin:{name}")).unwrap();
-            let embedded = parse_obj(name, text, LengthUnit::Kilometres).unwrap();
+            let embedded = Mesh::parse_obj(name, text, LengthUnit::Kilometres).unwrap();
             let file = Mesh::read_obj(shapes().join(name), LengthUnit::Kilometres).unwrap();
             assert_eq!(embedded, file, "{name}");
         }
         let (_, v) = builtin_text("builtin:Didymos_A_vert_met.csv").unwrap();
         let (_, f) = builtin_text("builtin:Didymos_A_facet.csv").unwrap();
-        let embedded = parse_vertex_facet("v", v, "f", f, LengthUnit::Metres).unwrap();
+        let embedded = Mesh::parse_vertex_facet_csv("v", v, "f", f, LengthUnit::Metres).unwrap();
         let file = Mesh::read_vertex_facet_csv(
             shapes().join("Didymos_A_vert_met.csv"),
             shapes().join("Didymos_A_facet.csv"),
@@ -463,22 +336,6 @@ mod tests {
         assert_eq!(
             (embedded.vertices.len(), embedded.faces.len()),
             (1000, 1996)
-        );
-    }
-
-    #[test]
-    fn text_parsers_name_the_line() {
-        let e = parse_obj("m.obj", "v 0 0 0\nv 1 x 0\n", LengthUnit::Metres).unwrap_err();
-        assert!(
-            e.to_string().starts_with("m.obj:2: coordinate \"x\""),
-            "{e}"
-        );
-        let e = parse_obj("m.obj", "v 0 0 0\nf 1 2 3 4\n", LengthUnit::Metres).unwrap_err();
-        assert!(e.to_string().contains("face 0 has 4 corners"), "{e}");
-        let e = parse_obj("m.obj", "f 1 0 2\n", LengthUnit::Metres).unwrap_err();
-        assert!(
-            e.to_string().starts_with("m.obj:1: vertex index \"0\""),
-            "{e}"
         );
     }
 }
