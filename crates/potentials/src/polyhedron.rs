@@ -42,7 +42,7 @@
 //!   $\varepsilon (r/R)^2$. Beyond [`FAR_FIELD_RADII`] circumscribing radii $R$ (about the
 //!   centroid) the field is the exterior multipole expansion instead, with moments exact to
 //!   rounding and the degree chosen per point so that the rigorous truncation bound stays below
-//!   half an ulp ([`multipole`]).
+//!   half an ulp (module `multipole`).
 //! - **Mass properties** by signed tetrahedra about a point near the body (the mean vertex),
 //!   the second moments about the centroid itself (no parallel-axis cancellation).
 

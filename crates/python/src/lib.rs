@@ -1,17 +1,17 @@
 //! Python bindings of surfgrav: the extension module `surfgrav._surfgrav`, re-exported by the
 //! `surfgrav` package (`python/surfgrav/__init__.py`; stubs in `__init__.pyi`).
 //!
-//! - bodies ([`bodies`]): `Sphere`, `Spheroid`, `Ellipsoid`, `Disk`, `PointMass`, `Polyhedron`, with
+//! - bodies (module `bodies`): `Sphere`, `Spheroid`, `Ellipsoid`, `Disk`, `PointMass`, `Polyhedron`, with
 //!   `field(points)` over an (N, 3) array, in parallel;
-//! - interactions ([`interaction`]): `interact` and `interact_batch`;
-//! - simulations ([`simulation`]): `Simulation` (two bodies, an integrator by name,
+//! - interactions (module `interaction`): `interact` and `interact_batch`;
+//! - simulations (module `simulation`): `Simulation` (two bodies, an integrator by name,
 //!   `integrate(t_end, interval=None)` returning a `Trajectory` of arrays);
-//! - scenes ([`scene`]): `Scene.load`, `Scene.preset`, `Scene.parse`, run as `surfgrav run`
+//! - scenes (module `scene`): `Scene.load`, `Scene.preset`, `Scene.parse`, run as `surfgrav run`
 //!   runs them (`SceneRun`: the CLI's summary and the trajectory's rows);
-//! - sweeps ([`sweep`]): the compiled half of `surfgrav.sweep` (plan, one task, results.csv).
+//! - sweeps (module `sweep`): the compiled half of `surfgrav.sweep` (plan, one task, results.csv).
 //!
 //! Conventions are the workspace's (README): Φ < 0, a = −∇Φ, V < 0, orientations body → world.
-//! Computation runs with the GIL released; errors are Python exceptions ([`errors`]), never a
+//! Computation runs with the GIL released; errors are Python exceptions (module `errors`), never a
 //! panic across the FFI boundary.
 
 use pyo3::prelude::*;
