@@ -40,18 +40,15 @@
 //! A quadrature failure of the engine (tolerance not met, non-finite result) is reported as
 //! [`InteractionError::Engine`] carrying the separation and the engine's typed error.
 //!
-//! # Performance (paper-2s: RK4, dt = 0.1, t = 300, 12 001 force evaluations; release build,
-//! one core, example `paper_2s`)
+//! # Cost
 //!
-//! Direct path at engine tolerance $10^{-12}$: 148–169 ms (12.4–14 µs per evaluation, nearly
-//! all of it the engine). Fast path: 2.9 ms in all, of which start-up 1.7 ms: one engine call
-//! to check the start (its $V$ and $V'$ reused), 5 calls at $10^{-10}$ for the range (0.11 ms;
-//! safeguarded Newton, see [`reachable_separations`]; formerly 196 calls, 2.4–2.6 ms), 82 calls
-//! at $10^{-13}$ for a one-piece table of degree 32 (1.55 ms; formerly 98: the failed degree
-//! 16 is now passed over on its coefficients without its 16 checks), then 0.1 µs per force
-//! (formerly 0.16–0.2 µs; the series is summed as two half-length chains). Both give
-//! $\psi_p = 18.963831°$, $T_r = 47.354929$; their orbits differ by $1.9\times10^{-11}$ in
-//! separation.
+//! The direct path pays one engine evaluation per force (nearly all of the run's time). The
+//! fast path pays a start-up (one engine call to check the start, whose $V$ and $V'$ are
+//! reused; a few calls at $10^{-10}$ for the reachable range by safeguarded Newton, see
+//! [`reachable_separations`]; the table's nodes at $10^{-13}$) and then a Chebyshev sum per
+//! force. On paper-2s both give $\psi_p = 18.963831°$ and $T_r = 47.354929$, their orbits
+//! $1.9\times10^{-11}$ apart in separation (tests/engine_model.rs). Measured times: the
+//! README's Benchmarks and `surfgrav bench` (part b: table against direct).
 
 use crate::interpolant::{reachable_separations, InterpolantError, InterpolatedCentralPair};
 use crate::model::{InteractionError, InteractionModel, MotionPath, Wrench};

@@ -120,23 +120,15 @@
 //! the acceleration form $\rho\oint\mathbf x\\,(\mathbf a\cdot\mathrm d\mathbf S)$ is summed
 //! too and used when its bound is lower ([`FAR_FIELD_RATIO`], [`CANCELLATION_RATIO`]).
 //!
-//! # Performance
+//! # Cost
 //!
-//! The founding paper's pair (two oblate spheroids a = 1, c = 0.25, m = 1, common equatorial
-//! plane) to a certified $10^{-12}$ on one core, release build (example `work_precision`, which
-//! prints the full work–precision tables): 38–43 µs at separation 2.1 (506 field
-//! evaluations), 20 µs at 2.55, 16 µs at 3 (210), 10 µs at 7, 8 µs at 30; the true errors are
-//! below $4\times10^{-15}$. A single uncertified table reaching $10^{-12}$ costs about 6 µs at
-//! separation 3: the certificate (a second, finer table) is most of the price. The adaptive
-//! rule costs 25–90 times the ladder at $10^{-12}$; the nested doubling rule
-//! ([`MethodChoice::Nested`]) certifies $10^{-12}$ at 1.8–2.7 times the time of the cheapest
-//! single table that is as accurate (uncertified), at all five separations.
-//! [`InteractionEngine::force`] (the force alone, for integrator stages) saves 15–17 % (13.6
-//! against 16.1 µs at separation 3). The node loop spends about 70 ns per node, three quarters
-//! of it in the spheroid's field; through `dyn Potential` the same loop costs 26–39 % more
-//! (example `work_precision`, last lines). Machines of this kind differ: on a slower one
-//! (2.0 GHz, the paper's force at separation 3 taking 10.95 ms in Python against 4.3 ms) the
-//! ladder costs 55–60 µs at 2.1, 21.6–23.4 µs at 3 and 12–13 µs at 30.
+//! A certified result costs the nodes of two levels of a rule (the certificate, a second and
+//! finer table, is most of the price); the evaluations are reported with every result. The
+//! node loop's cost is mostly the source body's field; through `dyn Potential` it costs more
+//! than through a built-in kind. [`InteractionEngine::force`] (the force alone, for
+//! integrator stages) skips the torque and energy terms. Measured figures live where they are
+//! re-measured: `cargo bench -p surfgrav-surfaces`, the examples `work_precision` and
+//! `pose_benchmark`, `surfgrav bench`, and the README's Benchmarks.
 //!
 //! # Overlap
 //!
