@@ -140,6 +140,11 @@ fn main() {
         primary.faces().len(),
         primary.circumscribing_radius()
     );
+    let max_x = primary
+        .vertices()
+        .iter()
+        .map(|v| v.x)
+        .fold(f64::NEG_INFINITY, f64::max);
     let primary = Body::polyhedron(primary).unwrap();
     let secondary = Body::ellipsoid(
         Ellipsoid::with_density(103.6778, 79.7526, 66.4605, density)
@@ -148,6 +153,16 @@ fn main() {
             .unwrap(),
     )
     .unwrap();
+    if std::env::args().any(|a| a == "--near") {
+        let pose = Pose::new(Vec3::new(max_x + 103.6778 * 1.05, 0.0, 0.0), Vec3::zeros());
+        near(
+            "Didymos near contact",
+            &primary,
+            &secondary,
+            &pose,
+            &[1e-10, 1e-12],
+        );
+    }
     let pose = Pose::new(Vec3::new(1180.0, 0.0, 0.0), Vec3::zeros());
     if std::env::args().any(|a| a == "--levels") {
         levels("Didymos", &primary, &secondary, &pose, SurfaceChoice::A);
@@ -174,6 +189,11 @@ fn main() {
     );
     let alpha = Body::polyhedron(alpha).unwrap();
     let beta = Body::polyhedron(beta).unwrap();
+    if std::env::args().any(|a| a == "--near") {
+        let pose = Pose::new(Vec3::new(0.6, 0.0, 0.8) * 1800.0, Vec3::new(-0.5, 0.1, 0.9));
+        near("KW4 1800 m", &alpha, &beta, &pose, &[1e-10, 1e-13]);
+        return;
+    }
     let pose = Pose::new(Vec3::new(2540.0, 0.0, 0.0), Vec3::zeros());
     if std::env::args().any(|a| a == "--levels") {
         levels("KW4", &alpha, &beta, &pose, SurfaceChoice::B);
@@ -266,5 +286,48 @@ pub fn levels(name: &str, a: &Body, b: &Body, pose_b: &Pose, surface: SurfaceCho
             t.elapsed().as_secs_f64() * 1e3,
             error(&r, &reference)
         );
+    }
+}
+
+/// Near contact: the Didymos standard pair with the secondary's tip 0.05 × 103.6778 m beyond
+/// the mesh's largest x, and the KW4 pair 1800 m apart (as the ignored test): per tolerance the
+/// surface, evaluations, level, estimate and CPU time, and the true error against the other
+/// surface at 1e-13.
+pub fn near(name: &str, a: &Body, b: &Body, pose_b: &Pose, tols: &[f64]) {
+    let pose_a = Pose::identity();
+    let options = |tol: f64, surface| InteractionOptions {
+        relative_tolerance: tol,
+        surface,
+        ..InteractionOptions::default()
+    };
+    for surface in [SurfaceChoice::Automatic, SurfaceChoice::A, SurfaceChoice::B] {
+        for &tol in tols {
+            let mut engine = InteractionEngine::new(options(tol, surface)).unwrap();
+            let cpu = cpu_seconds();
+            let r = match engine.interact(a, &pose_a, b, pose_b) {
+                Ok(r) => r,
+                Err(e) => {
+                    println!("{name} {surface:?} {tol:.0e}: {e}");
+                    continue;
+                }
+            };
+            let cpu = cpu_seconds() - cpu;
+            let other = match r.integrated_over {
+                Some(surfgrav_surfaces::interaction::Side::A) => SurfaceChoice::B,
+                _ => SurfaceChoice::A,
+            };
+            let reference = InteractionEngine::new(options(1e-13, other))
+                .unwrap()
+                .interact(a, &pose_a, b, pose_b);
+            let truth = reference.as_ref().map(|f| error(&r, f)).unwrap_or(f64::NAN);
+            println!(
+                "{name} {surface:?} {tol:.0e}: over {:?}, {} evaluations, level {:?}, estimate {:.2e}, true {truth:.2e}, {:.1} ms CPU (first call)",
+                r.integrated_over,
+                r.evaluations,
+                r.level,
+                r.error_estimate,
+                cpu * 1e3
+            );
+        }
     }
 }

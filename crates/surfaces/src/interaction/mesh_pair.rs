@@ -10,7 +10,8 @@
 //! at level $\ell$ of the ladder [`LEVELS`] with rule order $n\_\ell$ ($n^2$ points, degree
 //! $2n-1$) and subdivision threshold $\theta\_\ell$ it is cut into $k_f^2$ triangles, $k_f =
 //! \lceil h_f/(\theta\_\ell D_f)\rceil$. The ladder starts at the first level whose predicted
-//! error $\max_f (h_f/(8k_fD_f))^{2n}$ is within 10 tolerances and stops when two successive
+//! error, the smaller of $\max_f e_f$ and 10 times $\sum_f (A_f/A)\\,e_f$ with $e_f =
+//! (h_f/(8k_fD_f))^{2n}$, is within 10 tolerances and stops when two successive
 //! levels agree to the tolerance, returning the finer, as the engine's other rules do. The
 //! estimate is the change between the levels, plus the disagreement of the two torque forms and
 //! of the two force forms ($-\rho\oint\Phi\\,\mathrm d\mathbf S$ and $\rho\oint\mathbf x\\,(\mathbf
@@ -112,6 +113,14 @@ pub const LEVELS: [(usize, Real); 14] = [
     (8, 0.09),
     (8, 0.0625),
 ];
+
+/// Factor on the area-weighted mean of the faces' model errors in the predicted error of a
+/// level ([`Geometry::predicted_error`]). Measured (true error of a level taken as its change to
+/// the next): the weighted mean over the true error is 0.4-0.95 for KW4 Alpha in Beta's field
+/// at 1800 m (levels 0-2) and 1.4-45 for the Didymos primary with the secondary 0.05 sizes
+/// away (levels 0-4), while the worst face's model is 1.2-7.5 and 25-5,600 times the true
+/// error; 10 keeps every start level of KW4 where the worst face puts it.
+const SHARE_FACTOR: Real = 10.0;
 
 /// Most pieces a face is cut into per edge.
 const MAX_PIECES: usize = 64;
@@ -363,6 +372,8 @@ struct Geometry<'m> {
     mesh: &'m TriangleMesh,
     /// $h_f / D_f$.
     ratio: Vec<Real>,
+    /// $A_f / \sum_g A_g$.
+    share: Vec<Real>,
 }
 
 impl<'m> Geometry<'m> {
@@ -376,7 +387,12 @@ impl<'m> Geometry<'m> {
                 h / dist.max(h / MAX_PIECES as Real)
             })
             .collect();
-        Self { mesh, ratio }
+        let areas: Vec<Real> = (0..mesh.len())
+            .map(|f| mesh.area_vector(f).norm())
+            .collect();
+        let total: Real = areas.iter().sum::<Real>().max(Real::MIN_POSITIVE);
+        let share = areas.iter().map(|a| a / total).collect();
+        Self { mesh, ratio, share }
     }
 
     fn pieces(&self, f: usize, level: usize) -> usize {
@@ -391,11 +407,19 @@ impl<'m> Geometry<'m> {
             .sum()
     }
 
+    /// The smaller of the worst face's model error and [`SHARE_FACTOR`] times the
+    /// area-weighted mean of the faces' model errors (a face's error enters the integral in
+    /// proportion to its share of the surface: near contact only the few cut faces are
+    /// coarse).
     fn predicted_error(&self, level: usize) -> Real {
         let n = LEVELS[level].0 as i32;
-        (0..self.mesh.len())
-            .map(|f| (self.ratio[f] / (8.0 * self.pieces(f, level) as Real)).powi(2 * n))
-            .fold(0.0, Real::max)
+        let (mut worst, mut mean): (Real, Real) = (0.0, 0.0);
+        for f in 0..self.mesh.len() {
+            let e = (self.ratio[f] / (8.0 * self.pieces(f, level) as Real)).powi(2 * n);
+            worst = worst.max(e);
+            mean += self.share[f] * e;
+        }
+        worst.min(SHARE_FACTOR * mean)
     }
 
     /// The first level predicted within 10 tolerances: the next one is then expected to agree
