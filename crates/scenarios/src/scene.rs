@@ -680,21 +680,28 @@ impl SceneFile {
         // Positions so large that 100 separations overflow are refused as out of range below.
         let escape_distance = escape_distance.filter(|d| d.is_finite());
 
-        check_in_range(&initial, &body_a, &body_b, g).map_err(|message| {
-            loc.at(&self.body_b.get_ref().position, "body_b.position", message)
+        check_in_range(&initial, &body_a, &body_b, g).map_err(|reason| {
+            loc.at(
+                &self.body_b.get_ref().position,
+                "body_b.position",
+                reason.to_string(),
+            )
         })?;
 
         let integrator = build_integrator(&loc, &self.integrator)?;
         if let IntegratorChoice::Fixed { step, .. } = integrator {
             let time_scale = dynamical_time(&initial, &body_a, &body_b, g);
-            if let Err(message) = step_fits(step, t_end - t_start)
+            if let Err(reason) = step_fits(step, t_end - t_start)
                 .and_then(|()| step_resolves_orbit(step, time_scale))
             {
                 let at = self.integrator.get_ref().step.as_ref().map_or_else(
                     || loc.at(&self.integrator, "integrator.step", ""),
                     |s| loc.at(s, "integrator.step", ""),
                 );
-                return Err(SceneError { message, ..at });
+                return Err(SceneError {
+                    message: reason.to_string(),
+                    ..at
+                });
             }
         }
 
@@ -838,7 +845,10 @@ fn build_body(
                         "must be a positive finite length (a number)",
                     )
                 })?;
-                Given::Number(kinds::positive_length(x).map_err(|m| loc.at(v, &field(name), m))?)
+                Given::Number(
+                    kinds::positive_length(x)
+                        .map_err(|e| loc.at(v, &field(name), e.to_string()))?,
+                )
             }
             ValueKind::Lengths => {
                 let n = key.cli.len();
@@ -1075,8 +1085,8 @@ fn build_integrator(
             )
         })?;
         let tolerance = positive(t, "integrator.tolerance")?;
-        if let Err(message) = adaptive_tolerance_in_range(tolerance) {
-            return Err(loc.at(t, "integrator.tolerance", message));
+        if let Err(reason) = adaptive_tolerance_in_range(tolerance) {
+            return Err(loc.at(t, "integrator.tolerance", reason.to_string()));
         }
         Ok(IntegratorChoice::Adaptive { method, tolerance })
     } else {
@@ -1142,11 +1152,9 @@ impl Scene {
             let tolerance = match (tolerance, self.integrator) {
                 (Some(t), _) => {
                     let t = positive("--tolerance", t)?;
-                    adaptive_tolerance_in_range(t).map_err(|message| {
-                        OverrideError::OutOfRange {
-                            flag: "--tolerance",
-                            message,
-                        }
+                    adaptive_tolerance_in_range(t).map_err(|reason| OverrideError::OutOfRange {
+                        flag: "--tolerance",
+                        reason,
                     })?;
                     t
                 }
@@ -1168,10 +1176,10 @@ impl Scene {
                 }
             };
             self.integrator = IntegratorChoice::Fixed { method, step };
-            step_fits(step, self.t_end - self.t_start).map_err(|message| {
+            step_fits(step, self.t_end - self.t_start).map_err(|reason| {
                 OverrideError::OutOfRange {
                     flag: if step_given { "--dt" } else { "--t-end" },
-                    message,
+                    reason,
                 }
             })?;
             let time_scale = dynamical_time(
@@ -1180,9 +1188,9 @@ impl Scene {
                 &self.body_b,
                 self.gravitational_constant,
             );
-            step_resolves_orbit(step, time_scale).map_err(|message| OverrideError::OutOfRange {
+            step_resolves_orbit(step, time_scale).map_err(|reason| OverrideError::OutOfRange {
                 flag: "--dt",
-                message,
+                reason,
             })?;
         }
         Ok(())
@@ -1236,27 +1244,88 @@ pub enum OverrideError {
     },
     /// A step or tolerance out of the range that can work (the message says why and what to
     /// choose).
-    #[error("{flag}: {message}")]
+    #[error("{flag}: {reason}")]
     OutOfRange {
         /// The option at fault.
         flag: &'static str,
         /// Why, and what to choose.
-        message: String,
+        reason: RangeError,
+    },
+}
+
+/// Numbers a run cannot work with (the message says why and what to choose): reported at the
+/// scene file's line or with the command-line flag.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RangeError {
+    /// A fixed step longer than the run.
+    #[error(
+        "the step {} is longer than the run (t_end − t_start = {}): choose a step well below \
+         the run's length and the orbit's period (the paper's presets use 0.1 for t = 300)",
+        compact(*.step),
+        compact(*.span)
+    )]
+    StepLongerThanRun {
+        /// The step.
+        step: Real,
+        /// t_end − t_start.
+        span: Real,
+    },
+    /// A fixed step longer than the orbit's dynamical time at the start.
+    #[error(
+        "the step {} is longer than the orbit's dynamical time √(r³/G(m_A + m_B)) = {} at \
+         the start: no fixed-step method can follow the orbit; choose a step of about a \
+         hundredth of it or less (e.g. {})",
+        compact(*.step),
+        crate::cli::significant(*.time_scale, 3),
+        crate::cli::significant(*.time_scale / 100.0, 1)
+    )]
+    StepBeyondOrbit {
+        /// The step.
+        step: Real,
+        /// √(r³/G(m_A + m_B)) at the start.
+        time_scale: Real,
+    },
+    /// A derived quantity of the initial state overflows.
+    #[error(
+        "values out of range: {what} overflows double precision (separation {}): rescale the \
+         units so that positions, velocities and masses stay well inside 1e-150…1e150",
+        compact(*.separation)
+    )]
+    Overflow {
+        /// Which quantity.
+        what: &'static str,
+        /// The initial separation.
+        separation: Real,
+    },
+    /// The squared separation underflows to zero.
+    #[error(
+        "values out of range: the squared separation {}² underflows to zero: rescale the units",
+        compact(*.separation)
+    )]
+    Underflow {
+        /// The initial separation.
+        separation: Real,
+    },
+    /// An adaptive tolerance outside what double precision can meet.
+    #[error(
+        "must lie in [{:e}, {}) for an adaptive integrator (double precision cannot meet less \
+         than ~1e-15), got {tolerance:e}; 1e-15 to 1e-6 are sensible",
+        IntegratorKind::MIN_TOLERANCE,
+        IntegratorKind::MAX_TOLERANCE
+    )]
+    Tolerance {
+        /// The tolerance given.
+        tolerance: Real,
     },
 }
 
 /// A fixed step must not be longer than the run: a step of 500 over t = 300 would jump the
 /// bodies across their whole orbit (and out of any tabulated range) in one go.
-fn step_fits(step: Real, span: Real) -> Result<(), String> {
+fn step_fits(step: Real, span: Real) -> Result<(), RangeError> {
     if step <= span {
         Ok(())
     } else {
-        Err(format!(
-            "the step {} is longer than the run (t_end − t_start = {}): choose a step well below \
-             the run's length and the orbit's period (the paper's presets use 0.1 for t = 300)",
-            compact(step),
-            compact(span)
-        ))
+        Err(RangeError::StepLongerThanRun { step, span })
     }
 }
 
@@ -1272,18 +1341,11 @@ fn dynamical_time(initial: &TwoBodyState, body_a: &BuiltBody, body_b: &BuiltBody
 /// unstable beyond hω ≈ 2.8 with ω = 1/τ on a circular orbit, and any method's error is of
 /// order one there): it would give a few steps of meaningless numbers. Refused; a step of
 /// τ/100 or less is sensible. (Not a guarantee: close approaches need a smaller step still.)
-fn step_resolves_orbit(step: Real, time_scale: Real) -> Result<(), String> {
+fn step_resolves_orbit(step: Real, time_scale: Real) -> Result<(), RangeError> {
     if !(time_scale.is_finite() && step > time_scale) {
         Ok(())
     } else {
-        Err(format!(
-            "the step {} is longer than the orbit's dynamical time √(r³/G(m_A + m_B)) = {} at \
-             the start: no fixed-step method can follow the orbit; choose a step of about a \
-             hundredth of it or less (e.g. {})",
-            compact(step),
-            crate::cli::significant(time_scale, 3),
-            crate::cli::significant(time_scale / 100.0, 1)
-        ))
+        Err(RangeError::StepBeyondOrbit { step, time_scale })
     }
 }
 
@@ -1295,7 +1357,7 @@ fn check_in_range(
     body_a: &BuiltBody,
     body_b: &BuiltBody,
     g: Real,
-) -> Result<(), String> {
+) -> Result<(), RangeError> {
     let (ma, mb) = (body_a.potential().mass(), body_b.potential().mass());
     let (a, b) = (&initial.body_a, &initial.body_b);
     let separation = initial.separation();
@@ -1324,20 +1386,11 @@ fn check_in_range(
     ];
     for (what, value) in quantities {
         if !value.is_finite() {
-            return Err(format!(
-                "values out of range: {what} overflows double precision (separation {}): \
-                 rescale the units so that positions, velocities and masses stay well inside \
-                 1e-150…1e150",
-                compact(separation)
-            ));
+            return Err(RangeError::Overflow { what, separation });
         }
     }
     if separation * separation == 0.0 {
-        return Err(format!(
-            "values out of range: the squared separation {}² underflows to zero: rescale the \
-             units",
-            compact(separation)
-        ));
+        return Err(RangeError::Underflow { separation });
     }
     Ok(())
 }
@@ -1346,16 +1399,11 @@ fn check_in_range(
 /// [`IntegratorKind::MAX_TOLERANCE`]): below a few machine epsilons the error estimate is
 /// rounding noise and the step size collapses. Checked here so the message can point at the
 /// scene file's line or the command-line flag.
-fn adaptive_tolerance_in_range(tolerance: Real) -> Result<(), String> {
+fn adaptive_tolerance_in_range(tolerance: Real) -> Result<(), RangeError> {
     if (IntegratorKind::MIN_TOLERANCE..IntegratorKind::MAX_TOLERANCE).contains(&tolerance) {
         Ok(())
     } else {
-        Err(format!(
-            "must lie in [{:e}, {}) for an adaptive integrator (double precision cannot meet less \
-             than ~1e-15), got {tolerance:e}; 1e-15 to 1e-6 are sensible",
-            IntegratorKind::MIN_TOLERANCE,
-            IntegratorKind::MAX_TOLERANCE
-        ))
+        Err(RangeError::Tolerance { tolerance })
     }
 }
 

@@ -226,15 +226,17 @@ pub fn all_scene_keys() -> Vec<&'static str> {
     out
 }
 
-/// A length must be positive and finite: the scene files' message.
-pub fn positive_length(x: Real) -> Result<Real, String> {
+/// A length that is not positive and finite (the scene files' message).
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error("must be a positive finite length, got {}", compact(*.0))]
+pub struct NotPositiveLength(pub Real);
+
+/// A length must be positive and finite.
+pub fn positive_length(x: Real) -> Result<Real, NotPositiveLength> {
     if x.is_finite() && x > 0.0 {
         Ok(x)
     } else {
-        Err(format!(
-            "must be a positive finite length, got {}",
-            compact(x)
-        ))
+        Err(NotPositiveLength(x))
     }
 }
 
