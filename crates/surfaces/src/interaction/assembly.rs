@@ -83,20 +83,7 @@ impl Values {
             error_estimate,
             level,
         };
-        let finite = result
-            .force_on_a
-            .iter()
-            .chain(result.torque_on_a.iter())
-            .chain(result.torque_on_b.iter())
-            .all(|x| x.is_finite())
-            && result.potential_energy.is_finite();
-        if finite {
-            Ok(result)
-        } else {
-            Err(InteractionError::NonFiniteResult {
-                what: "force, torque or energy",
-            })
-        }
+        finite(result)
     }
 }
 
@@ -181,6 +168,24 @@ pub(crate) fn solid_values(mut s: SolidSums, density: Real, p: &Placement) -> Va
         (p.position_y - p.position_x).norm(),
     );
     values
+}
+
+/// The result if every force, torque and energy is finite, else the typed error.
+pub(crate) fn finite(result: Interaction) -> Result<Interaction, InteractionError> {
+    let finite = result
+        .force_on_a
+        .iter()
+        .chain(result.torque_on_a.iter())
+        .chain(result.torque_on_b.iter())
+        .all(|x| x.is_finite())
+        && result.potential_energy.is_finite();
+    if finite {
+        Ok(result)
+    } else {
+        Err(InteractionError::NonFiniteResult {
+            what: "force, torque or energy",
+        })
+    }
 }
 
 pub(crate) fn symmetrise_solid(s: &SolidSums, axis: usize) -> SolidSums {

@@ -80,6 +80,7 @@
 //! of each inside the other); bodies of unknown shape are checked on the mesh's vertices and
 //! face centres and the other's centroid.
 
+use super::assembly::finite;
 use super::body::{Body, BodyShape};
 use super::error::{InteractionError, Side};
 use super::overlap::CONTACT_MARGIN;
@@ -336,7 +337,7 @@ fn point_formula(
             Vec3::zeros(),
         ),
     };
-    finish(Interaction {
+    finite(Interaction {
         force_on_a,
         force_on_b: -force_on_a,
         torque_on_a,
@@ -348,23 +349,6 @@ fn point_formula(
         error_estimate: ANALYTIC_RELATIVE_ERROR,
         level: None,
     })
-}
-
-fn finish(result: Interaction) -> Result<Interaction, InteractionError> {
-    let finite = result
-        .force_on_a
-        .iter()
-        .chain(result.torque_on_a.iter())
-        .chain(result.torque_on_b.iter())
-        .all(|x| x.is_finite())
-        && result.potential_energy.is_finite();
-    if finite {
-        Ok(result)
-    } else {
-        Err(InteractionError::NonFiniteResult {
-            what: "force, torque or energy",
-        })
-    }
 }
 
 /// Per-face sizes and distances to the source's singular set, for the subdivision.
@@ -493,7 +477,7 @@ fn over_mesh(
             r.evaluations = evaluations;
             r.error_estimate = Real::INFINITY;
             r.level = Some(l as u16);
-            return finish(r);
+            return finite(r);
         }
         if let Some((prev, _)) = previous {
             let change = relative_change(&current, &prev, force_only);
@@ -503,10 +487,10 @@ fn over_mesh(
             r.error_estimate = estimate;
             r.level = Some(level as u16);
             if estimate <= tol {
-                return finish(r);
+                return finite(r);
             }
             if level + 1 >= LEVELS.len() || evaluations >= options.max_evaluations {
-                let r = finish(r)?;
+                let r = finite(r)?;
                 return Err(InteractionError::ToleranceNotMet {
                     tolerance: tol,
                     error_estimate: r.error_estimate,
