@@ -148,6 +148,25 @@ pub trait Potential: std::fmt::Debug + Send + Sync {
         self.field(r).potential
     }
 
+    /// Fields at many body-frame points: `out[k]` becomes the field at `points[k]` (for the
+    /// shorter of the two slices). The default evaluates [`Potential::field`] point by point;
+    /// a kind overrides it where several points evaluated together are faster. The engine's
+    /// node loops call it on blocks of points, so a user's own potential gets the batched path
+    /// by overriding this one method.
+    fn fields_into(&self, points: &[Vec3], out: &mut [Field]) {
+        for (field, r) in out.iter_mut().zip(points) {
+            *field = self.field(r);
+        }
+    }
+
+    /// Potentials at many body-frame points, as [`Potential::fields_into`] (default: point by
+    /// point through [`Potential::potential`]).
+    fn potentials_into(&self, points: &[Vec3], out: &mut [Real]) {
+        for (potential, r) in out.iter_mut().zip(points) {
+            *potential = self.potential(r);
+        }
+    }
+
     /// Acceleration only.
     fn acceleration(&self, r: &Vec3) -> Vec3 {
         self.field(r).acceleration
