@@ -40,7 +40,7 @@ rm "$WORK/driver/Cargo.toml.in"
 CARGO_TARGET_DIR="$WORK/target" cargo build --release -j1 --manifest-path "$WORK/driver/Cargo.toml"
 
 # surfgrav's exact values and times (one thread; both programs are single-threaded).
-(cd "$root" && CARGO_TARGET_DIR="$target" cargo build --release -j1 -p surfgrav-surfaces --example gubas_compare)
+(cd "$root" && CARGO_TARGET_DIR="$target" cargo build --release -j1 -p surfgrav-interaction --example gubas_compare)
 {
     echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
     echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores"

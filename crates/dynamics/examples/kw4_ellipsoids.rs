@@ -17,8 +17,8 @@ use surfgrav_dynamics::{
     state_from_elements, true_anomaly, Adaptive, BodyState, Elements, EngineModel, FixedScheme,
     FixedStep, Integrator, TwoBodyState,
 };
+use surfgrav_interaction::{Body, InteractionOptions};
 use surfgrav_potentials::{Ellipsoid, Real, Vec3};
-use surfgrav_surfaces::interaction::{Body, InteractionOptions};
 
 const G: Real = 6.674e-11;
 const HOUR: Real = 3600.0;

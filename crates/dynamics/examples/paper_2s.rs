@@ -11,8 +11,8 @@ use surfgrav_dynamics::{
     run_with_diagnostics, BodyState, FixedScheme, FixedStep, Integrator, OrbitAnalyser,
     OrbitReport, SceneModel, SceneSettings, TwoBodyState,
 };
+use surfgrav_interaction::Body;
 use surfgrav_potentials::{Real, Spheroid, Vec3};
-use surfgrav_surfaces::interaction::Body;
 
 fn initial() -> TwoBodyState {
     TwoBodyState::new(

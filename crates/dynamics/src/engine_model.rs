@@ -57,11 +57,11 @@ use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
-use surfgrav_potentials::{InertiaTensor, Pose, Real, Symmetry as FieldSymmetry, Vec3};
-use surfgrav_surfaces::interaction::{
+use surfgrav_interaction::{
     Body, Interaction, InteractionEngine, InteractionError as EngineError, InteractionOptions,
     Request,
 };
+use surfgrav_potentials::{InertiaTensor, Pose, Real, Symmetry as FieldSymmetry, Vec3};
 use thiserror::Error;
 
 /// Two directions count as parallel (or a vector as lying in a plane) when the sine of the
@@ -851,8 +851,8 @@ mod tests {
     use super::*;
     use crate::state::BodyState;
     use std::sync::Arc;
+    use surfgrav_interaction::BodyShape;
     use surfgrav_potentials::{Field, Potential, Region, Spheroid};
-    use surfgrav_surfaces::interaction::BodyShape;
     use surfgrav_surfaces::EllipsoidSurface;
 
     /// A spheroid behind a user's type, reporting its symmetry or not.

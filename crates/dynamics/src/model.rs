@@ -96,7 +96,7 @@ pub enum InteractionError {
         /// Centroid separation.
         separation: Real,
         /// The engine's error, saying what to change.
-        source: surfgrav_surfaces::interaction::InteractionError,
+        source: surfgrav_interaction::InteractionError,
     },
 }
 

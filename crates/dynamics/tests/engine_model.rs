@@ -8,8 +8,8 @@ use surfgrav_dynamics::{
     InteractionError, InteractionModel, OrbitAnalyser, RunReport, SceneModel, SceneSettings,
     Termination, TwoBodyState,
 };
+use surfgrav_interaction::{Body, InteractionOptions};
 use surfgrav_potentials::{Pose, Real, Sphere, Spheroid, UniformDisk, Vec3};
-use surfgrav_surfaces::interaction::{Body, InteractionOptions};
 
 /// Issue 4: the direct and tabulated paths give the same orbit to this in separation.
 const SAME_ORBIT_SEPARATION: Real = 1e-9;
@@ -384,7 +384,7 @@ fn engine_failure_is_reported_with_its_reason() {
             assert!(
                 matches!(
                     source,
-                    surfgrav_surfaces::interaction::InteractionError::ToleranceNotMet { .. }
+                    surfgrav_interaction::InteractionError::ToleranceNotMet { .. }
                 ),
                 "{source}"
             );

@@ -13,8 +13,8 @@ use surfgrav_dynamics::{
     angular_momentum, total_energy, BodyState, EngineModel, FixedScheme, FixedStep, Integrator,
     InteractionModel, Termination, TwoBodyState,
 };
+use surfgrav_interaction::{Body, InteractionOptions};
 use surfgrav_potentials::{Ellipsoid, LengthUnit, Mesh, Polyhedron, Sphere, Vec3};
-use surfgrav_surfaces::interaction::{Body, InteractionOptions};
 
 const G: f64 = 6.67408e-11;
 /// The published 2103.98576788771879 kg/m³ to double precision.

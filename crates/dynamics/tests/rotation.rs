@@ -11,8 +11,8 @@ use surfgrav_dynamics::{
     angular_momentum, total_energy, Adaptive, BodyState, EngineModel, FixedScheme, FixedStep,
     Integrator, InteractionError, InteractionModel, MotionPath, Sample, TwoBodyState, Wrench,
 };
+use surfgrav_interaction::{Body, InteractionOptions};
 use surfgrav_potentials::{Ellipsoid, InertiaTensor, Pose, Real, Sphere, Vec3};
-use surfgrav_surfaces::interaction::{Body, InteractionOptions};
 
 /// A lone rigid body (A) with a far point mass (B) and no interaction at all: the torque-free
 /// rigid body.

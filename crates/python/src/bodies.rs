@@ -12,9 +12,9 @@ use pyo3::types::PyTuple;
 use rayon::prelude::*;
 use std::path::PathBuf;
 
+use surfgrav_interaction::Body as EngineBody;
 use surfgrav_potentials::{LengthUnit, Mesh, Polyhedron as PolyhedronBody, Potential, Vec3};
 use surfgrav_scenarios::spec::{compact, Amount, BodyKind, BodySpec};
-use surfgrav_surfaces::interaction::Body as EngineBody;
 
 use crate::arrays;
 use crate::errors::{compute, input, Failure, InputError};

@@ -7,10 +7,10 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
-use surfgrav_potentials::{Pose, Vec3};
-use surfgrav_surfaces::interaction::{
+use surfgrav_interaction::{
     Interaction as EngineInteraction, InteractionEngine, InteractionError, InteractionOptions,
 };
+use surfgrav_potentials::{Pose, Vec3};
 
 use crate::arrays;
 use crate::bodies::{Body, Core};

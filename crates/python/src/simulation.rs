@@ -17,8 +17,8 @@ use surfgrav_dynamics::{
     angular_momentum, total_energy, BodyState, DynamicsError, EngineModelError, IntegratorKind,
     InteractionModel, PointMasses, SceneModel, SceneSettings, Termination, TwoBodyState,
 };
+use surfgrav_interaction::InteractionError as EngineError;
 use surfgrav_potentials::Vec3;
-use surfgrav_surfaces::interaction::InteractionError as EngineError;
 
 use crate::arrays;
 use crate::bodies::{Body, Core};
@@ -130,7 +130,7 @@ fn build_model(
         return Ok((Box::new(model), "point masses (exact)"));
     }
     let settings = SceneSettings {
-        engine: surfgrav_surfaces::interaction::InteractionOptions {
+        engine: surfgrav_interaction::InteractionOptions {
             relative_tolerance: interaction_tolerance,
             ..Default::default()
         },

@@ -6,8 +6,8 @@
 
 mod surfgrav {
     pub use surfgrav_dynamics as dynamics;
+    pub use surfgrav_interaction as interaction;
     pub use surfgrav_potentials as potentials;
-    pub use surfgrav_surfaces as surfaces;
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -16,8 +16,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         run_with_diagnostics, BodyState, FixedScheme, FixedStep, SceneModel, SceneSettings,
         TwoBodyState,
     };
+    use surfgrav::interaction::Body;
     use surfgrav::potentials::{Spheroid, Vec3};
-    use surfgrav::surfaces::interaction::Body;
 
     // The paper's 2S scene: two oblate spheroids a = 1, c = 0.25, m = 1 (G = 1), 7 apart.
     let body = Body::spheroid(Spheroid::new(1.0, 0.25, 1.0)?)?;

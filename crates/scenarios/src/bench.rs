@@ -72,11 +72,11 @@ use surfgrav_dynamics::{
     BodyState, ConservationMonitor, EngineModel, IntegratorKind, InteractionModel, Sample,
     SceneModel, SceneSettings, Termination, TwoBodyState,
 };
-use surfgrav_potentials::{Pose, Spheroid, UniformDisk, Vec3};
-use surfgrav_surfaces::interaction::{
+use surfgrav_interaction::{
     Body, Interaction, InteractionEngine, InteractionError, InteractionOptions, MethodChoice,
     Parametrisation,
 };
+use surfgrav_potentials::{Pose, Spheroid, UniformDisk, Vec3};
 
 use crate::plot::{write_figure, Figure, LinePanel, Panel, PlotError, Series, Style};
 

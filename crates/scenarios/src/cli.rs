@@ -11,8 +11,8 @@ use std::path::{Path, PathBuf};
 use clap::{Parser, Subcommand};
 use serde::Serialize;
 
+use surfgrav_interaction::{InteractionEngine, InteractionOptions};
 use surfgrav_potentials::{Pose, Vec3};
-use surfgrav_surfaces::interaction::{InteractionEngine, InteractionOptions};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -273,7 +273,7 @@ struct InteractOutput {
 }
 
 impl InteractOutput {
-    fn of(r: &surfgrav_surfaces::interaction::Interaction, seconds: Option<f64>) -> Self {
+    fn of(r: &surfgrav_interaction::Interaction, seconds: Option<f64>) -> Self {
         Self {
             force_on_a: r.force_on_a.into(),
             force_on_b: r.force_on_b.into(),
@@ -311,7 +311,7 @@ struct BatchLine {
 fn interact_batch(path: &str) -> Result<String, UserError> {
     use std::collections::HashMap;
     use std::time::Instant;
-    use surfgrav_surfaces::interaction::Body;
+    use surfgrav_interaction::Body;
     let text = if path == "-" {
         let mut t = String::new();
         std::io::Read::read_to_string(&mut std::io::stdin(), &mut t)

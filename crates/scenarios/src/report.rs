@@ -28,10 +28,8 @@ use std::fs;
 use std::path::Path;
 
 use rayon::prelude::*;
+use surfgrav_interaction::{Body, InteractionEngine, InteractionError, InteractionOptions};
 use surfgrav_potentials::{BodyError, Pose, Real, Spheroid, UniformDisk, Vec3};
-use surfgrav_surfaces::interaction::{
-    Body, InteractionEngine, InteractionError, InteractionOptions,
-};
 
 use crate::cli::{progress_bar, CliError};
 use crate::figures;

@@ -28,8 +28,8 @@ use surfgrav_dynamics::{
     SceneModel, SceneSettings, SeriesAccumulator, SpinOrbitAnalyser, SpinOrbitReport, Termination,
     TwoBodyState,
 };
+use surfgrav_interaction::{InteractionError as EngineError, InteractionOptions};
 use surfgrav_potentials::{Real, Vec3};
-use surfgrav_surfaces::interaction::{InteractionError as EngineError, InteractionOptions};
 
 use crate::output::{Cadence, OutputError, OutputPlan};
 use crate::scene::Scene;

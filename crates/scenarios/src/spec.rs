@@ -21,11 +21,11 @@ use std::fmt;
 use std::str::FromStr;
 use std::sync::Arc;
 
+use surfgrav_interaction::{Body, InteractionError};
 use surfgrav_potentials::{
     BodyError, Ellipsoid, MeshError, PointMass, Potential, Real, Sphere, Spheroid, UniformDisk,
     Vec3,
 };
-use surfgrav_surfaces::interaction::{Body, InteractionError};
 use thiserror::Error;
 
 use crate::kinds::{self, polyhedron::PolyhedronBody, Given, Kind, ValueKind, Values};

@@ -17,7 +17,7 @@
 //!   engine's own loops too ([`sum`] module docs).
 //! - [`TriangleMesh`] and [`TriangleRule`]: a polyhedron's faces with their exact area vectors,
 //!   Stroud's conical product rules on triangles and uniform subdivision ([`mesh`] module docs;
-//!   the pairs in [`interaction::mesh_pair`]).
+//!   the pairs are in the `surfgrav-interaction` crate's `mesh_pair`).
 //! - [`Lamina`] and [`LaminaNodes`]: the uniform disk as a lamina, with area and rim nodes and the
 //!   way the engine combines them ([`lamina`] module docs).
 //!
@@ -64,7 +64,6 @@
 mod error;
 
 pub mod ellipsoid;
-pub mod interaction;
 pub mod lamina;
 pub mod mesh;
 pub mod nodes;

@@ -21,7 +21,6 @@
 //! Where a parametrisation degenerates (a pole, where a whole row of parameters maps to one point)
 //! $\mathbf S$ stays finite; it may vanish there (polar-angle form) or not (azimuth–height form).
 
-use crate::interaction::InteractionError;
 use crate::{NodeTableError, Real, Vec3};
 
 /// The range of one surface parameter: `surfgrav_quadrature`'s [`Interval`] (finite ends,
@@ -35,12 +34,6 @@ impl From<InvalidInterval> for NodeTableError {
             start: error.start,
             end: error.end,
         }
-    }
-}
-
-impl From<InvalidInterval> for InteractionError {
-    fn from(error: InvalidInterval) -> Self {
-        InteractionError::NodeTable(error.into())
     }
 }
 

@@ -2,8 +2,8 @@
 #![allow(dead_code)]
 
 use surfgrav_dynamics::{BodyState, PointMasses, Sample, SceneModel, SceneSettings, TwoBodyState};
+use surfgrav_interaction::Body;
 use surfgrav_potentials::{Real, Spheroid, Vec3};
-use surfgrav_surfaces::interaction::Body;
 
 /// A Kepler problem: two point masses of 0.5 each, G = 1 (μ = 1), semi-major axis 1,
 /// eccentricity `e`, starting at pericentre on +x moving toward +y, centre of mass at rest at the

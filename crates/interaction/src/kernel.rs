@@ -1,0 +1,809 @@
+//! The node loops: one pass over an integrated body's node table evaluates the source body's
+//! field once per node and accumulates every sum that the force, the torque (both forms) and
+//! the mutual potential energy need (see the [module docs](super) for the formulas).
+//!
+//! The loops are generic over the source potential (`P: Potential + ?Sized`), so the field
+//! formula of a concrete type is compiled into them; with `P = dyn Potential` they still work,
+//! at the price of one indirect call per node. Nodes are moved into the source's frame on the
+//! fly (nine fused multiply–adds), so no transformed copy of the table is stored and nothing is
+//! allocated. Summation: plain within blocks of [`BLOCK`] nodes, compensated
+//! ([`surfgrav_surfaces::CompensatedSum`]) across blocks, which keeps the rounding error at the level of
+//! one block's (measured: below $10^{-15}$ relative for every table the engine builds) for a
+//! fraction of the cost of compensating every term.
+
+use super::error::InteractionError;
+use nalgebra::{Matrix3, Rotation3};
+use surfgrav_potentials::{Field, Pose, Potential};
+use surfgrav_surfaces::sum::{CompensatedSum, CompensatedSum3};
+use surfgrav_surfaces::{LaminaNodes, Real, SurfaceNodes, Vec3};
+
+/// Nodes summed plainly before a compensated addition.
+pub const BLOCK: usize = 16;
+
+/// The affine map $\mathbf r_B = M\\,\mathbf r + \mathbf t$ from the frame of an integrated body's
+/// node table into the frame of the body whose field is evaluated ($M$ a rotation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameMap {
+    pub(crate) rotation: Matrix3<Real>,
+    pub(crate) offset: Vec3,
+}
+
+impl FrameMap {
+    /// The map with rotation `rotation` and offset `offset`; fails on a non-finite entry.
+    pub fn new(rotation: &Rotation3<Real>, offset: &Vec3) -> Result<Self, InteractionError> {
+        let m = *rotation.matrix();
+        if m.iter().chain(offset.iter()).all(|x| x.is_finite()) {
+            Ok(Self {
+                rotation: m,
+                offset: *offset,
+            })
+        } else {
+            Err(InteractionError::NonFinitePose {
+                body: super::Side::A,
+                what: "frame map (rotation or offset)",
+            })
+        }
+    }
+
+    /// The map from the body frame of a body at `integrated` to the body frame of a body at
+    /// `source`: $M = R_s^{\mathsf T} R_i$, $\mathbf t = R_s^{\mathsf T}(\mathbf p_i - \mathbf p_s)$.
+    pub fn between(integrated: &Pose, source: &Pose) -> Result<Self, InteractionError> {
+        let rotation = (source.rotation.inverse() * integrated.rotation).to_rotation_matrix();
+        let offset = source
+            .rotation
+            .inverse_transform_vector(&(integrated.position - source.position));
+        Self::new(&rotation, &offset)
+    }
+
+    /// $M\mathbf r + \mathbf t$.
+    #[inline]
+    pub fn apply(&self, r: &Vec3) -> Vec3 {
+        self.rotation * r + self.offset
+    }
+
+    /// $M^{\mathsf T}\mathbf v$: a source-frame vector in the table frame.
+    #[inline]
+    pub fn back(&self, v: &Vec3) -> Vec3 {
+        self.rotation.tr_mul(v)
+    }
+}
+
+/// The raw node sums over a closed surface (table frame; $\mathbf x = \mathbf r - \mathbf o$ from
+/// the centroid, $\mathbf a$ the source's acceleration turned into the table frame).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SolidSums {
+    /// $\sum_k (\Phi_k - \Phi_0) \mathbf W_k \approx \oint \Phi\\,\mathrm d\mathbf S$, with $\Phi_0$ the
+    /// source's potential at the centroid (taken out because $\oint\mathrm d\mathbf S = 0$: the
+    /// terms, and their rounding, shrink by the ratio of the body's size to its distance).
+    pub potential_flux: Vec3,
+    /// $\sum_k (\Phi_k - \Phi_0)\\, \mathbf x_k \times \mathbf W_k \approx \oint \Phi\\,\mathbf x\times\mathrm d\mathbf S$
+    /// ($\oint\mathbf x\times\mathrm d\mathbf S = 0$).
+    pub potential_moment: Vec3,
+    /// $\sum_k \tfrac12|\mathbf x_k|^2\\, \mathbf W_k \times \mathbf a_k \approx \tfrac12\oint |\mathbf x|^2\\,\mathrm d\mathbf S\times\mathbf a$.
+    pub gradient_moment: Vec3,
+    /// $\sum_k (\Phi_k \mathbf x_k + \tfrac12|\mathbf x_k|^2 \mathbf a_k)\cdot\mathbf W_k$.
+    pub energy_flux: Real,
+    /// $\sum_k |\Phi_k - \Phi_0|\\,|\mathbf W_k|$: the size of the terms of `potential_flux`,
+    /// which bounds its rounding error (the terms cancel to a small result far from the source).
+    pub potential_flux_magnitude: Real,
+    /// $\sum_k |\Phi_k - \Phi_0|\\,|\mathbf x_k\times\mathbf W_k|$.
+    pub potential_moment_magnitude: Real,
+    /// $\sum_k |\Phi_k\\,\mathbf x_k\cdot\mathbf W_k| + |\tfrac12|\mathbf x_k|^2\\,\mathbf a_k\cdot\mathbf W_k|$.
+    pub energy_flux_magnitude: Real,
+    /// $\sum_k \mathbf x_k\\,(\mathbf a_k\cdot\mathbf W_k) \approx \oint\mathbf x\\,(\mathbf a\cdot\mathrm d\mathbf S)
+    /// = \int\mathbf a\\,\mathrm dV$ (as $\nabla\cdot(\mathbf x\otimes\mathbf a) = \mathbf a$ where
+    /// $\nabla\cdot\mathbf a = 0$): the acceleration form of the force, free of the cancellation
+    /// of $\Phi_k - \Phi_0$ far from the source (the engine's `force_form` choice).
+    pub acceleration_flux: Vec3,
+    /// $\sum_k |\mathbf x_k|\\,|\mathbf a_k\cdot\mathbf W_k|$.
+    pub acceleration_flux_magnitude: Real,
+    /// $\sum_k |\Phi_k|\\,|\mathbf W_k|$: the scale of the rounding of $\Phi_k$ itself, which
+    /// $\Phi_k - \Phi_0$ keeps.
+    pub potential_magnitude: Real,
+}
+
+impl SolidSums {
+    /// The sums over these nodes and their mirror images in the plane $x\_{axis} = 0$, for a
+    /// field with that mirror symmetry: a mirror image changes the sign of a polar vector's
+    /// component `axis` and of an axial vector's (a moment's) other two components, so the
+    /// sum keeps twice the polar vectors' other components and twice the axial vectors'
+    /// component `axis`; scalars double.
+    #[inline]
+    pub(crate) fn symmetrised(&self, axis: usize) -> Self {
+        let (polar, axial) = match axis {
+            0 => (Vec3::new(0.0, 2.0, 2.0), Vec3::new(2.0, 0.0, 0.0)),
+            1 => (Vec3::new(2.0, 0.0, 2.0), Vec3::new(0.0, 2.0, 0.0)),
+            _ => (Vec3::new(2.0, 2.0, 0.0), Vec3::new(0.0, 0.0, 2.0)),
+        };
+        Self {
+            potential_flux: self.potential_flux.component_mul(&polar),
+            potential_moment: self.potential_moment.component_mul(&axial),
+            gradient_moment: self.gradient_moment.component_mul(&axial),
+            energy_flux: 2.0 * self.energy_flux,
+            potential_flux_magnitude: 2.0 * self.potential_flux_magnitude,
+            potential_moment_magnitude: 2.0 * self.potential_moment_magnitude,
+            energy_flux_magnitude: 2.0 * self.energy_flux_magnitude,
+            acceleration_flux: self.acceleration_flux.component_mul(&polar),
+            acceleration_flux_magnitude: 2.0 * self.acceleration_flux_magnitude,
+            potential_magnitude: 2.0 * self.potential_magnitude,
+        }
+    }
+
+    /// The physical integrals for a solid of density `density` (table frame):
+    /// $\mathbf F = -\rho\oint\Phi\\,\mathrm d\mathbf S$, $\mathbf M = -\rho\oint\Phi\\,\mathbf x\times\mathrm d\mathbf S$,
+    /// $\mathbf M' = \tfrac\rho2\oint|\mathbf x|^2\\,\mathrm d\mathbf S\times\mathbf a$,
+    /// $V = \tfrac\rho3\oint(\Phi\mathbf x + \tfrac12|\mathbf x|^2\mathbf a)\cdot\mathrm d\mathbf S$.
+    pub fn integrals(&self, density: Real, evaluations: usize) -> SolidIntegrals {
+        SolidIntegrals {
+            force: -density * self.potential_flux,
+            torque: -density * self.potential_moment,
+            torque_gradient_form: density * self.gradient_moment,
+            potential_energy: density * self.energy_flux / 3.0,
+            evaluations,
+        }
+    }
+}
+
+/// Force, torque (both forms) and mutual potential energy of a homogeneous solid in another
+/// body's field, in the frame of its node table, torques about its centroid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolidIntegrals {
+    /// $\mathbf F = -\rho\oint\Phi\\,\mathrm d\mathbf S$ (force on the solid).
+    pub force: Vec3,
+    /// $\mathbf M = -\rho\oint\Phi\\,(\mathbf r-\mathbf o)\times\mathrm d\mathbf S$.
+    pub torque: Vec3,
+    /// $\mathbf M = \tfrac\rho2\oint|\mathbf r-\mathbf o|^2\\,\mathrm d\mathbf S\times\mathbf a$: the
+    /// same torque by the second form; the two agree to quadrature accuracy.
+    pub torque_gradient_form: Vec3,
+    /// $V = \rho\int\Phi\\,\mathrm dV$ (negative); valid when the source's matter is outside the
+    /// solid.
+    pub potential_energy: Real,
+    /// Field evaluations spent.
+    pub evaluations: usize,
+}
+
+#[inline]
+fn reflect_polar(v: &Vec3, axis: usize) -> Vec3 {
+    // A product with a sign vector, not a store through a run-time index: the latter made
+    // the symmetrisation of the nested rule's level values a measurable share of its cost.
+    let sign = match axis {
+        0 => Vec3::new(-1.0, 1.0, 1.0),
+        1 => Vec3::new(1.0, -1.0, 1.0),
+        _ => Vec3::new(1.0, 1.0, -1.0),
+    };
+    v.component_mul(&sign)
+}
+
+#[inline]
+fn reflect_axial(v: &Vec3, axis: usize) -> Vec3 {
+    -reflect_polar(v, axis)
+}
+
+/// The solid loop over parallel slices of points and weighted area vectors (table frame),
+/// moments about `origin`: [`add_solid_node`] with each node's constants computed on the fly.
+#[inline(never)]
+pub(crate) fn solid_sums<P: Potential + ?Sized>(
+    points: &[Vec3],
+    area_vectors: &[Vec3],
+    origin: &Vec3,
+    source: &P,
+    map: &FrameMap,
+) -> SolidSums {
+    let mut flux = CompensatedSum3::new();
+    let mut moment = CompensatedSum3::new();
+    let mut gradient_moment = CompensatedSum3::new();
+    let mut energy = CompensatedSum::new();
+    let mut sizes = SolidMagnitudes::default();
+    // ∮ dS = 0 and ∮ x × dS = 0: the potential at the centroid can be taken out of the force
+    // and torque sums, whose terms then shrink by the ratio of size to distance.
+    let reference = source.potential(&map.apply(origin));
+    for (block_points, block_weights) in points.chunks(BLOCK).zip(area_vectors.chunks(BLOCK)) {
+        let mut block = SolidBlock::default();
+        for (r, w) in block_points.iter().zip(block_weights) {
+            let field = source.field(&map.apply(r));
+            let k = NodeConstants::new(r - origin, w);
+            add_solid_node::<false, true>(&mut block, &mut sizes, &field, map, w, &k, reference);
+        }
+        flux.add(&block.flux);
+        moment.add(&block.moment);
+        gradient_moment.add(&block.gradient_moment);
+        energy.add(block.energy);
+    }
+    sizes.sums(
+        flux.value(),
+        moment.value(),
+        gradient_moment.value(),
+        energy.value(),
+        Vec3::zeros(),
+    )
+}
+
+/// What a solid node's terms need besides the field, the point and the weighted area vector
+/// $\mathbf W$: constants of the node ($\mathbf x = \mathbf r - \mathbf o$), computed once when a
+/// table is built (or per node where the nodes move with the pose).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct NodeConstants {
+    /// $\mathbf x\times\mathbf W$.
+    pub(crate) moment: Vec3,
+    /// $\tfrac12|\mathbf x|^2$.
+    pub(crate) half_x2: Real,
+    /// $\mathbf x\cdot\mathbf W$.
+    pub(crate) x_dot_w: Real,
+    /// $|\mathbf W|$.
+    pub(crate) w_norm: Real,
+    /// $|\mathbf x\times\mathbf W|$.
+    pub(crate) moment_norm: Real,
+    /// $\mathbf x$.
+    pub(crate) x: Vec3,
+    /// $|\mathbf x|$.
+    pub(crate) x_norm: Real,
+}
+
+impl NodeConstants {
+    /// The constants of a node at $\mathbf x$ (from the centroid) with area vector `w`.
+    #[inline(always)]
+    pub(crate) fn new(x: Vec3, w: &Vec3) -> Self {
+        let moment = x.cross(w);
+        Self {
+            moment,
+            half_x2: 0.5 * x.norm_squared(),
+            x_dot_w: x.dot(w),
+            w_norm: w.norm(),
+            moment_norm: moment.norm(),
+            x,
+            x_norm: x.norm(),
+        }
+    }
+}
+
+/// One block's plain sums of the solid integrand (summed compensated across blocks).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct SolidBlock {
+    /// $\sum(\Phi - \Phi_0)\mathbf W$.
+    pub(crate) flux: Vec3,
+    /// $\sum(\Phi - \Phi_0)\\,\mathbf x\times\mathbf W$.
+    pub(crate) moment: Vec3,
+    /// $\sum\tfrac12|\mathbf x|^2\\,\mathbf W\times\mathbf a$.
+    pub(crate) gradient_moment: Vec3,
+    /// $\sum(\Phi\mathbf x + \tfrac12|\mathbf x|^2\mathbf a)\cdot\mathbf W$.
+    pub(crate) energy: Real,
+    /// $\sum\mathbf x\\,(\mathbf a\cdot\mathbf W)$ (far away only).
+    pub(crate) acceleration_flux: Vec3,
+}
+
+/// The running sizes of the solid integrand's terms (the rounding bounds of [`SolidSums`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct SolidMagnitudes {
+    /// $\sum|\Phi - \Phi_0||\mathbf W|$.
+    pub(crate) flux: Real,
+    /// $\sum|\Phi - \Phi_0||\mathbf x\times\mathbf W|$.
+    pub(crate) moment: Real,
+    /// $\sum|\Phi\\,\mathbf x\cdot\mathbf W| + |\tfrac12|\mathbf x|^2\mathbf a\cdot\mathbf W|$.
+    pub(crate) energy: Real,
+    /// $\sum|\mathbf x||\mathbf a\cdot\mathbf W|$ (far away only).
+    pub(crate) acceleration: Real,
+    /// $\sum|\Phi||\mathbf W|$.
+    pub(crate) potential: Real,
+}
+
+impl SolidMagnitudes {
+    /// The sums with these magnitudes.
+    pub(crate) fn sums(
+        &self,
+        potential_flux: Vec3,
+        potential_moment: Vec3,
+        gradient_moment: Vec3,
+        energy_flux: Real,
+        acceleration_flux: Vec3,
+    ) -> SolidSums {
+        SolidSums {
+            potential_flux,
+            potential_moment,
+            gradient_moment,
+            energy_flux,
+            potential_flux_magnitude: self.flux,
+            potential_moment_magnitude: self.moment,
+            energy_flux_magnitude: self.energy,
+            acceleration_flux,
+            acceleration_flux_magnitude: self.acceleration,
+            potential_magnitude: self.potential,
+        }
+    }
+}
+
+/// The solid integrand at one node, added to a block's sums: the one place where the terms of
+/// the force (both forms), the torques (both forms) and the energy are written. `field` is the
+/// source's field at the node (source frame; `map` turns its acceleration back), `w` the
+/// weighted area vector, `reference` the source's potential at the centroid. `FULL`: torques
+/// and energy too (otherwise the force alone); `FAR`: the acceleration form of the force too.
+#[inline(always)]
+pub(crate) fn add_solid_node<const FAR: bool, const FULL: bool>(
+    block: &mut SolidBlock,
+    sizes: &mut SolidMagnitudes,
+    field: &Field,
+    map: &FrameMap,
+    w: &Vec3,
+    k: &NodeConstants,
+    reference: Real,
+) {
+    let phi = field.potential;
+    if FULL {
+        let a = map.back(&field.acceleration);
+        let a_dot_w = a.dot(w);
+        let (e_potential, e_gradient) = (phi * k.x_dot_w, k.half_x2 * a_dot_w);
+        if FAR {
+            block.acceleration_flux += k.x * a_dot_w;
+            sizes.acceleration += k.x_norm * a_dot_w.abs();
+        }
+        sizes.potential += phi.abs() * k.w_norm;
+        let relative = phi - reference;
+        block.flux += w * relative;
+        block.moment += k.moment * relative;
+        block.gradient_moment += w.cross(&a) * k.half_x2;
+        block.energy += e_potential + e_gradient;
+        sizes.flux += relative.abs() * k.w_norm;
+        sizes.moment += relative.abs() * k.moment_norm;
+        sizes.energy += e_potential.abs() + e_gradient.abs();
+    } else {
+        if FAR {
+            let a_dot_w = map.back(&field.acceleration).dot(w);
+            block.acceleration_flux += k.x * a_dot_w;
+            sizes.acceleration += k.x_norm * a_dot_w.abs();
+        }
+        sizes.potential += phi.abs() * k.w_norm;
+        let relative = phi - reference;
+        block.flux += w * relative;
+        sizes.flux += relative.abs() * k.w_norm;
+    }
+}
+
+/// The solid integrand at a single node ([`add_solid_node`] with everything, near form): for
+/// rules that evaluate one node at a time (the adaptive cubature). `x` is the node's position
+/// from the centroid (table frame).
+#[inline]
+pub(crate) fn solid_node(
+    field: &Field,
+    map: &FrameMap,
+    x: Vec3,
+    w: &Vec3,
+    reference: Real,
+) -> SolidBlock {
+    let mut node = SolidBlock::default();
+    let k = NodeConstants::new(x, w);
+    add_solid_node::<false, true>(
+        &mut node,
+        &mut SolidMagnitudes::default(),
+        field,
+        map,
+        w,
+        &k,
+        reference,
+    );
+    node
+}
+
+/// A solid's node table with its per-node constants (the engine's cached form).
+#[derive(Debug, Clone)]
+pub(crate) struct SolidTable {
+    nodes: SurfaceNodes,
+    constants: Vec<NodeConstants>,
+}
+
+impl SolidTable {
+    pub(crate) fn new(nodes: SurfaceNodes) -> Self {
+        let origin = nodes.origin();
+        let constants = nodes
+            .points()
+            .iter()
+            .zip(nodes.weighted_area_vectors())
+            .map(|(r, w)| NodeConstants::new(r - origin, w))
+            .collect();
+        Self { nodes, constants }
+    }
+}
+
+impl std::ops::Deref for SolidTable {
+    type Target = SurfaceNodes;
+    fn deref(&self) -> &SurfaceNodes {
+        &self.nodes
+    }
+}
+
+/// The source's fields at a block's points (`ACCELERATION`: with the acceleration, otherwise
+/// the potential alone), evaluated before the block's sums: consecutive field evaluations
+/// (long chains of divisions and square roots, independent of each other) then overlap in the
+/// processor (measured 8 % faster per call than evaluating each node's field inside its sums).
+#[inline(always)]
+fn block_fields<P: Potential + ?Sized, const ACCELERATION: bool>(
+    points: &[Vec3],
+    source: &P,
+    map: &FrameMap,
+) -> [Field; BLOCK] {
+    let mut fields = [Field {
+        potential: 0.0,
+        acceleration: Vec3::zeros(),
+    }; BLOCK];
+    for (field, r) in fields.iter_mut().zip(points) {
+        if ACCELERATION {
+            *field = source.field(&map.apply(r));
+        } else {
+            field.potential = source.potential(&map.apply(r));
+        }
+    }
+    fields
+}
+
+/// The node sums over a [`SolidTable`] ([`add_solid_node`] with the table's constants):
+/// `FULL`, everything; otherwise the force parts alone, the potential form and, with `FAR`,
+/// the acceleration form (the field's acceleration is then needed; otherwise only the
+/// potential is evaluated).
+#[inline(never)]
+pub(crate) fn solid_table_sums<P: Potential + ?Sized, const FAR: bool, const FULL: bool>(
+    table: &SolidTable,
+    source: &P,
+    map: &FrameMap,
+) -> SolidSums {
+    let mut flux = CompensatedSum3::new();
+    let mut moment = CompensatedSum3::new();
+    let mut gradient_moment = CompensatedSum3::new();
+    let mut energy = CompensatedSum::new();
+    let mut acceleration_flux = CompensatedSum3::new();
+    let mut sizes = SolidMagnitudes::default();
+    let reference = source.potential(&map.apply(&table.nodes.origin()));
+    for ((block_points, block_weights), block_constants) in table
+        .nodes
+        .points()
+        .chunks(BLOCK)
+        .zip(table.nodes.weighted_area_vectors().chunks(BLOCK))
+        .zip(table.constants.chunks(BLOCK))
+    {
+        let mut block = SolidBlock::default();
+        let fields = if FULL || FAR {
+            block_fields::<P, true>(block_points, source, map)
+        } else {
+            block_fields::<P, false>(block_points, source, map)
+        };
+        for ((w, k), field) in block_weights.iter().zip(block_constants).zip(&fields) {
+            add_solid_node::<FAR, FULL>(&mut block, &mut sizes, field, map, w, k, reference);
+        }
+        flux.add(&block.flux);
+        if FULL {
+            moment.add(&block.moment);
+            gradient_moment.add(&block.gradient_moment);
+            energy.add(block.energy);
+        }
+        acceleration_flux.add(&block.acceleration_flux);
+    }
+    sizes.sums(
+        flux.value(),
+        moment.value(),
+        gradient_moment.value(),
+        energy.value(),
+        acceleration_flux.value(),
+    )
+}
+
+/// Force, torque (both forms) and energy of a homogeneous solid of density `density` whose
+/// closed surface is tabulated by `nodes`, in the field of `source`; `map` takes the table's
+/// frame into the source's body frame. Results are in the table's frame, torques about the
+/// table's [`origin`](SurfaceNodes::origin) (the solid's centroid).
+///
+/// Generic over the source, so a user's own potential type gets a monomorphised loop; any
+/// [`Surface`](surfgrav_surfaces::Surface) and any rule make the table. Valid when the source's matter lies
+/// outside the solid (the energy needs $\nabla^2\Phi = 0$ inside it); this function does not
+/// check it (the [`InteractionEngine`](super::InteractionEngine) does).
+///
+/// ```
+/// use surfgrav_potentials::{PointMass, Potential};
+/// use surfgrav_quadrature::{GaussLegendre, PeriodicTrapezoid, Rule1D};
+/// use surfgrav_interaction::{integrate_over_solid, FrameMap};
+/// use surfgrav_surfaces::{EllipsoidSurface, Interval, BorrowedRule, SurfaceNodes, Vec3};
+///
+/// // A unit sphere of mass 1 and a point mass 1 at distance 3: F = 1/9 toward it, V = −1/3.
+/// let sphere = EllipsoidSurface::sphere(1.0)?;
+/// let azimuth = PeriodicTrapezoid::new(32, 0.0, 1.0)?;
+/// let height = GaussLegendre::new(20, -1.0, 1.0)?;
+/// let table = SurfaceNodes::with_periodic_rule(
+///     &sphere.azimuth_height(),
+///     BorrowedRule::new(azimuth.nodes(), azimuth.weights(), Interval::UNIT)?,
+///     BorrowedRule::new(height.nodes(), height.weights(), Interval::SYMMETRIC_UNIT)?,
+/// )?;
+/// let point = PointMass::new(1.0)?;
+/// let map = FrameMap::new(&nalgebra::Rotation3::identity(), &Vec3::new(-3.0, 0.0, 0.0))?;
+/// let density = 1.0 / sphere.volume();
+/// let result = integrate_over_solid(&table, density, &point, &map);
+/// assert!((result.force - Vec3::new(1.0 / 9.0, 0.0, 0.0)).norm() < 1e-14);
+/// assert!((result.potential_energy + 1.0 / 3.0).abs() < 1e-14);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn integrate_over_solid<P: Potential + ?Sized>(
+    nodes: &SurfaceNodes,
+    density: Real,
+    source: &P,
+    map: &FrameMap,
+) -> SolidIntegrals {
+    solid_sums(
+        nodes.points(),
+        nodes.weighted_area_vectors(),
+        &nodes.origin(),
+        source,
+        map,
+    )
+    .integrals(density, nodes.len())
+}
+
+/// The raw node sums over a lamina (table frame; unit normal $\hat{\mathbf n}$, centre
+/// $\mathbf c$, $\mathbf x = \mathbf r - \mathbf c$, $a_n = \mathbf a\cdot\hat{\mathbf n}$).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct LaminaSums {
+    /// $\sum_k w_k \Phi_k \approx \iint\Phi\\,\mathrm dA$.
+    pub area_potential: Real,
+    /// $\sum_k w_k a\_{n,k}$.
+    pub area_normal_acceleration: Real,
+    /// $\sum_k w_k a\_{n,k}\\, \mathbf x_k\times\hat{\mathbf n}$.
+    pub area_normal_moment: Vec3,
+    /// $\sum_k w_k \mathbf a_k$ (plain area form of the force, a check).
+    pub area_acceleration: Vec3,
+    /// $\sum_k w_k\\, \mathbf x_k\times\mathbf a_k$ (plain area form of the torque, a check).
+    pub area_moment: Vec3,
+    /// $\sum_i (\Phi(\boldsymbol\rho_i) - \Phi_0)\\,\boldsymbol\nu_i \approx \oint\Phi\\,\hat{\boldsymbol\nu}\\,\mathrm dl$,
+    /// $\Phi_0$ the source's potential at the centre ($\oint\hat{\boldsymbol\nu}\\,\mathrm dl = 0$).
+    pub rim_potential_flux: Vec3,
+    /// $\sum_k w_k |a\_{n,k}| + \sum_i |\Phi_i - \Phi_0|\\,|\boldsymbol\nu_i|$: the size of the force's terms.
+    pub force_magnitude: Real,
+    /// $\sum_k w_k |a\_{n,k}|\\,|\mathbf x_k|$: the size of the torque's terms.
+    pub moment_magnitude: Real,
+}
+
+impl LaminaSums {
+    pub(crate) fn mirrored(&self, axis: usize) -> Self {
+        Self {
+            area_potential: self.area_potential,
+            area_normal_acceleration: self.area_normal_acceleration,
+            area_normal_moment: reflect_axial(&self.area_normal_moment, axis),
+            area_acceleration: reflect_polar(&self.area_acceleration, axis),
+            area_moment: reflect_axial(&self.area_moment, axis),
+            rim_potential_flux: reflect_polar(&self.rim_potential_flux, axis),
+            ..*self
+        }
+    }
+
+    pub(crate) fn plus(&self, other: &Self) -> Self {
+        Self {
+            area_potential: self.area_potential + other.area_potential,
+            area_normal_acceleration: self.area_normal_acceleration
+                + other.area_normal_acceleration,
+            area_normal_moment: self.area_normal_moment + other.area_normal_moment,
+            area_acceleration: self.area_acceleration + other.area_acceleration,
+            area_moment: self.area_moment + other.area_moment,
+            rim_potential_flux: self.rim_potential_flux + other.rim_potential_flux,
+            force_magnitude: self.force_magnitude + other.force_magnitude,
+            moment_magnitude: self.moment_magnitude + other.moment_magnitude,
+        }
+    }
+
+    /// The physical integrals for surface density σ and unit normal $\hat{\mathbf n}$:
+    /// $\mathbf F = \sigma\hat{\mathbf n}\iint a_n\\,\mathrm dA - \sigma\oint\Phi\hat{\boldsymbol\nu}\\,\mathrm dl$,
+    /// $\mathbf M = \sigma\iint a_n\\,\mathbf x\times\hat{\mathbf n}\\,\mathrm dA$, $V = \sigma\iint\Phi\\,\mathrm dA$.
+    pub fn integrals(
+        &self,
+        surface_density: Real,
+        normal: &Vec3,
+        evaluations: usize,
+    ) -> LaminaIntegrals {
+        let s = surface_density;
+        LaminaIntegrals {
+            force: s * (normal * self.area_normal_acceleration - self.rim_potential_flux),
+            torque: s * self.area_normal_moment,
+            force_area_form: s * self.area_acceleration,
+            torque_area_form: s * self.area_moment,
+            potential_energy: s * self.area_potential,
+            evaluations,
+        }
+    }
+}
+
+/// Force, torque and energy of a uniform lamina in another body's field (table frame, torque
+/// about the disk centre), with the plain area forms as checks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LaminaIntegrals {
+    /// $\sigma\hat{\mathbf n}\iint a_n\\,\mathrm dA - \sigma\oint\Phi\\,\hat{\boldsymbol\nu}\\,\mathrm dl$.
+    pub force: Vec3,
+    /// $\sigma\iint a_n\\,(\mathbf r-\mathbf c)\times\hat{\mathbf n}\\,\mathrm dA$.
+    pub torque: Vec3,
+    /// $\sigma\iint\mathbf a\\,\mathrm dA$: the same force by the area form.
+    pub force_area_form: Vec3,
+    /// $\sigma\iint(\mathbf r-\mathbf c)\times\mathbf a\\,\mathrm dA$: the same torque by the area form.
+    pub torque_area_form: Vec3,
+    /// $V = \sigma\iint\Phi\\,\mathrm dA$ (negative).
+    pub potential_energy: Real,
+    /// Field evaluations spent (area and rim nodes).
+    pub evaluations: usize,
+}
+
+/// The lamina loop (table frame).
+#[inline(never)]
+pub(crate) fn lamina_sums<P: Potential + ?Sized>(
+    nodes: &LaminaNodes,
+    source: &P,
+    map: &FrameMap,
+) -> LaminaSums {
+    let n = nodes.normal();
+    let c = nodes.centre();
+    let mut potential = CompensatedSum::new();
+    let mut normal_acc = CompensatedSum::new();
+    let mut normal_moment = CompensatedSum3::new();
+    let mut acc = CompensatedSum3::new();
+    let mut moment = CompensatedSum3::new();
+    let (mut force_size, mut moment_size) = (0.0, 0.0);
+    for (block_points, block_weights) in nodes
+        .area_points()
+        .chunks(BLOCK)
+        .zip(nodes.area_weights().chunks(BLOCK))
+    {
+        let (mut p, mut na, mut nm, mut ac, mut mo) =
+            (0.0, 0.0, Vec3::zeros(), Vec3::zeros(), Vec3::zeros());
+        for (r, &w) in block_points.iter().zip(block_weights) {
+            let field = source.field(&map.apply(r));
+            let a = map.back(&field.acceleration);
+            let x = r - c;
+            let an = a.dot(&n);
+            p += w * field.potential;
+            na += w * an;
+            nm += x.cross(&n) * (w * an);
+            ac += a * w;
+            mo += x.cross(&a) * w;
+            force_size += w * an.abs();
+            moment_size += w * an.abs() * x.norm();
+        }
+        potential.add(p);
+        normal_acc.add(na);
+        normal_moment.add(&nm);
+        acc.add(&ac);
+        moment.add(&mo);
+    }
+    let mut rim = CompensatedSum3::new();
+    // ∮ ν̂ dl = 0 around the rim: the potential at the centre comes out of the rim sum.
+    let reference = source.potential(&map.apply(&c));
+    for (block_points, block_normals) in nodes
+        .rim_points()
+        .chunks(BLOCK)
+        .zip(nodes.rim_weighted_normals().chunks(BLOCK))
+    {
+        let mut s = Vec3::zeros();
+        for (r, nu) in block_points.iter().zip(block_normals) {
+            let phi = source.potential(&map.apply(r));
+            let relative = phi - reference;
+            s += nu * relative;
+            // The rounding of Φ itself stays in Φ − Φ₀ (see `SolidSums::potential_magnitude`).
+            force_size += (relative.abs() + phi.abs()) * nu.norm();
+        }
+        rim.add(&s);
+    }
+    LaminaSums {
+        area_potential: potential.value(),
+        area_normal_acceleration: normal_acc.value(),
+        area_normal_moment: normal_moment.value(),
+        area_acceleration: acc.value(),
+        area_moment: moment.value(),
+        rim_potential_flux: rim.value(),
+        force_magnitude: force_size,
+        moment_magnitude: moment_size,
+    }
+}
+
+/// Force, torque and energy of a uniform lamina of surface density `surface_density`
+/// tabulated by `nodes`, in the field of `source` (see [`integrate_over_solid`] for `map` and
+/// the frames). Valid when the source does not touch the lamina.
+pub fn integrate_over_lamina<P: Potential + ?Sized>(
+    nodes: &LaminaNodes,
+    surface_density: Real,
+    source: &P,
+    map: &FrameMap,
+) -> LaminaIntegrals {
+    lamina_sums(nodes, source, map).integrals(
+        surface_density,
+        &nodes.normal(),
+        nodes.area_points().len() + nodes.rim_points().len(),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use surfgrav_potentials::{Pose, Spheroid};
+    use surfgrav_quadrature::{GaussLegendre, PeriodicTrapezoid, Rule1D};
+    use surfgrav_surfaces::{BorrowedRule, EllipsoidSurface, Interval};
+
+    /// A deterministic pseudo-random number in [-1, 1).
+    fn next(state: &mut u64) -> Real {
+        *state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((*state >> 11) as Real / (1u64 << 53) as Real) * 2.0 - 1.0
+    }
+
+    fn vector(state: &mut u64) -> Vec3 {
+        Vec3::new(next(state), next(state), next(state))
+    }
+
+    /// The one integrand ([`solid_node`], i.e. [`add_solid_node`]) against the formulas of
+    /// the module docs written out directly: force $\mathbf W(\Phi - \Phi_0)$, torque
+    /// $(\Phi - \Phi_0)\\,\mathbf x\times\mathbf W$, second torque $\tfrac12|\mathbf x|^2\\,\mathbf W\times\mathbf a$,
+    /// energy $(\Phi\mathbf x + \tfrac12|\mathbf x|^2\mathbf a)\cdot\mathbf W$, with $\mathbf a$ turned
+    /// back into the table frame. Tolerance: each term is a product of at most four factors
+    /// or a sum of three, so the two orders of evaluation differ by at most
+    /// [`ROUNDING_PER_TERM`](super::super::ROUNDING_PER_TERM), $4\epsilon$, of the sum of the
+    /// terms' magnitudes.
+    #[test]
+    fn the_node_integrand_is_the_documented_formula() {
+        let mut state = 12u64;
+        for _ in 0..1000 {
+            let pose = Pose::new(vector(&mut state) * 3.0, vector(&mut state));
+            let map = FrameMap::between(&pose, &Pose::identity()).unwrap();
+            let x = vector(&mut state);
+            let w = vector(&mut state) * 0.1;
+            let field = Field {
+                potential: -1.0 + 0.5 * next(&mut state),
+                acceleration: vector(&mut state),
+            };
+            let reference = -1.0 + 0.5 * next(&mut state);
+            let node = solid_node(&field, &map, x, &w, reference);
+            let phi = field.potential;
+            let a = map.rotation.transpose() * field.acceleration;
+            let half_x2 = 0.5 * x.norm_squared();
+            let bound = 4.0 * Real::EPSILON;
+            let close = |got: &Vec3, want: &Vec3, size: Real| {
+                (got - want).norm() <= bound * size.max(Real::MIN_POSITIVE)
+            };
+            let relative = phi - reference;
+            assert!(close(
+                &node.flux,
+                &(w * relative),
+                w.norm() * relative.abs()
+            ));
+            let moment = x.cross(&w) * relative;
+            assert!(close(
+                &node.moment,
+                &moment,
+                x.norm() * w.norm() * relative.abs()
+            ));
+            let gradient = w.cross(&a) * half_x2;
+            let size = w.norm() * a.norm() * half_x2;
+            assert!(close(&node.gradient_moment, &gradient, size));
+            let energy = (x * phi + a * half_x2).dot(&w);
+            let size = (x.norm() * phi.abs() + a.norm() * half_x2) * w.norm();
+            assert!((node.energy - energy).abs() <= bound * size);
+            assert_eq!(node.acceleration_flux, Vec3::zeros());
+        }
+    }
+
+    /// [`integrate_over_solid`]'s loop (constants computed per node) and the engine's cached
+    /// table loop ([`solid_table_sums`]) run the same integrand over the same nodes: every sum
+    /// and every magnitude agrees bit for bit.
+    #[test]
+    fn the_generic_loop_equals_the_table_loop_bit_for_bit() {
+        let surface = EllipsoidSurface::spheroid(1.0, 0.25).unwrap();
+        let azimuth = PeriodicTrapezoid::new(37, 0.0, 1.0).unwrap();
+        let height = GaussLegendre::new(21, -1.0, 1.0).unwrap();
+        let nodes = SurfaceNodes::with_periodic_rule(
+            &surface.azimuth_height(),
+            BorrowedRule::new(azimuth.nodes(), azimuth.weights(), Interval::UNIT).unwrap(),
+            BorrowedRule::new(height.nodes(), height.weights(), Interval::SYMMETRIC_UNIT).unwrap(),
+        )
+        .unwrap();
+        let source = Spheroid::new(0.8, 0.5, 1.3).unwrap();
+        let pose = Pose::new(Vec3::new(2.2, 0.4, -0.3), Vec3::new(0.2, -0.5, 0.3));
+        let map = FrameMap::between(&Pose::identity(), &pose).unwrap();
+        let generic = solid_sums(
+            nodes.points(),
+            nodes.weighted_area_vectors(),
+            &nodes.origin(),
+            &source,
+            &map,
+        );
+        let table = solid_table_sums::<_, false, true>(&SolidTable::new(nodes), &source, &map);
+        assert_eq!(generic, table);
+        assert!(generic.energy_flux < 0.0 && generic.potential_moment_magnitude > 0.0);
+    }
+}
