@@ -470,6 +470,8 @@ pub(crate) fn aimed_sums<P: Potential + ?Sized, const FAR: bool, const FULL: boo
     let reference = source.potential(&map.apply(&Vec3::zeros()));
     let mut points = [Vec3::zeros(); BLOCK];
     let mut area = [Vec3::zeros(); BLOCK];
+    let mut mapped = [Vec3::zeros(); BLOCK];
+    let mut potentials = [0.0; BLOCK];
     let mut fields = [Field {
         potential: 0.0,
         acceleration: Vec3::zeros(),
@@ -486,11 +488,14 @@ pub(crate) fn aimed_sums<P: Potential + ?Sized, const FAR: bool, const FULL: boo
             area[k] = cofactor.component_mul(&s) * block_weights[k];
         }
         for k in 0..n {
-            let r = map.apply(&points[k]);
-            if FULL || FAR {
-                fields[k] = source.field(&r);
-            } else {
-                fields[k].potential = source.potential(&r);
+            mapped[k] = map.apply(&points[k]);
+        }
+        if FULL || FAR {
+            source.fields_into(&mapped[..n], &mut fields[..n]);
+        } else {
+            source.potentials_into(&mapped[..n], &mut potentials[..n]);
+            for k in 0..n {
+                fields[k].potential = potentials[k];
             }
         }
         let mut block = SolidBlock::default();

@@ -410,9 +410,10 @@ impl std::ops::Deref for SolidTable {
 }
 
 /// The source's fields at a block's points (`ACCELERATION`: with the acceleration, otherwise
-/// the potential alone), evaluated before the block's sums: consecutive field evaluations
+/// the potential alone), evaluated before the block's sums through the batched
+/// [`Potential::fields_into`] / [`Potential::potentials_into`]: consecutive field evaluations
 /// (long chains of divisions and square roots, independent of each other) then overlap in the
-/// processor (measured 8 % faster per call than evaluating each node's field inside its sums).
+/// processor, and a kind that evaluates several points together (the ellipsoid) does so.
 #[inline(always)]
 fn block_fields<P: Potential + ?Sized, const ACCELERATION: bool>(
     points: &[Vec3],
@@ -423,11 +424,18 @@ fn block_fields<P: Potential + ?Sized, const ACCELERATION: bool>(
         potential: 0.0,
         acceleration: Vec3::zeros(),
     }; BLOCK];
-    for (field, r) in fields.iter_mut().zip(points) {
-        if ACCELERATION {
-            *field = source.field(&map.apply(r));
-        } else {
-            field.potential = source.potential(&map.apply(r));
+    let mut mapped = [Vec3::zeros(); BLOCK];
+    let n = points.len().min(BLOCK);
+    for (m, r) in mapped.iter_mut().zip(points) {
+        *m = map.apply(r);
+    }
+    if ACCELERATION {
+        source.fields_into(&mapped[..n], &mut fields[..n]);
+    } else {
+        let mut potentials = [0.0; BLOCK];
+        source.potentials_into(&mapped[..n], &mut potentials[..n]);
+        for (field, &potential) in fields.iter_mut().zip(&potentials[..n]) {
+            field.potential = potential;
         }
     }
     fields
