@@ -83,7 +83,7 @@
 //! the closed form's cancellation peaks; $\le 1.4\times10^{-15}$ near the rim
 //! ($\rho = R(1 \pm 10^{-12} \dots 10^{-3})$, $0 \le |z| \le R/2$), on and near the lamina
 //! and the axis, and $\le 6\times10^{-16}$ for $r \ge 2R$ out to $10^8 R$; at SI magnitudes
-//! alike. Cost: about 100 ns per [`Potential::field`] near the disk, 40–110 ns far away.
+//! alike. Cost per [`Potential::field`]: `cargo bench -p surfgrav-potentials` (`uniform_disk` in each group).
 
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;

@@ -60,7 +60,7 @@
 //! convolution, see `tests/reference/disk_pair.py`), 82 cases with radius ratios 1 to 1/100 and
 //! SI magnitudes, from touching to $r = 10^8 (R_A + R_B)$: worst $1.1\times10^{-15}$ relative in
 //! $F$ and $f$ (at a gap of $10^{-9}$), $6.3\times10^{-16}$ in $V$ and $u$; the test holds them
-//! to [`crate::tolerance::DISK_PAIR_REL`]. Cost: 50–80 ns per evaluation.
+//! to [`crate::tolerance::DISK_PAIR_REL`].
 
 use std::f64::consts::PI;
 

@@ -249,8 +249,8 @@ impl Summary {
 pub const DEFAULT_MAX_ROWS: usize = 10_000;
 
 /// Most rows the default output cadence writes for an adaptive method, plus the last state:
-/// each row is a dense-output state whose energy costs one more interaction (with the direct
-/// surface integral ~0.2 ms: 2,000 rows add ~0.4 s, 10,000 would add ~1.7 s to a 0.3 s run).
+/// each row is a dense-output state whose energy costs one more interaction, so the rows'
+/// cost grows with their number while the integration's does not.
 pub const DEFAULT_MAX_ADAPTIVE_ROWS: usize = 2_000;
 
 /// Which samples become rows of `trajectory.csv`.
