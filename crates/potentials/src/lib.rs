@@ -30,6 +30,7 @@
 
 mod body;
 mod error;
+mod lanes;
 
 pub mod carlson;
 pub mod disk;
