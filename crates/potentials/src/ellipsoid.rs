@@ -65,10 +65,10 @@
 //!   its own degree. Every lane performs the scalar operations in the scalar order and nothing
 //!   is fused, so each result is bit for bit [`Potential::field`]'s (a unit test compares the
 //!   bits over needles, disks and near-spheres, from $10^{-12}$ above the surface to $10^{19}$
-//!   body sizes, inside points and non-finite ones mixed in). A point inside or on the body,
-//!   beyond the far field, not finite, or whose $A_i$ leave $2^{\pm 300}$ is evaluated by
-//!   [`Potential::field`]. On x86-64 the lane code is compiled twice, with AVX (four lanes per
-//!   instruction; FMA not enabled) and without, and the CPU picks at run time.
+//!   body sizes, inside points and non-finite ones mixed in). A point with $F_0 \le 0$ (inside
+//!   or on the body), beyond the far field, not finite, or whose $A_i$ leave $2^{\pm 300}$ is
+//!   evaluated by [`Potential::field`]. On x86-64 the lane code is compiled twice, with AVX
+//!   (four lanes per instruction; FMA not enabled) and without, and the CPU picks at run time.
 //!
 //! Measured against the Dirichlet integral at 36 digits (mpmath) for axes 3:2:1, 1:0.5:0.01,
 //! 1:0.3:10⁻⁴, 10⁻⁴:2·10⁻⁴:1, nearly equal axes and SI magnitudes, from $10^{-12}$ above the
@@ -370,15 +370,10 @@ impl Ellipsoid {
         let mut excess = estimate;
         let mut ratio2 = [F4::splat(0.0); 3];
         if refine.any() {
-            for l in 0..LANES {
-                if refine.flags()[l] {
-                    let (refined, ratios) =
-                        surface_excess(&[p[0].0[l], p[1].0[l], p[2].0[l]], &s.axes, &s.inv_axes);
-                    excess.0[l] = refined;
-                    for i in 0..3 {
-                        ratio2[i].0[l] = ratios[i];
-                    }
-                }
+            let (refined, ratios) = surface_excess_lanes(&p, &s.axes, &s.inv_axes);
+            excess = refine.select(refined, excess);
+            for i in 0..3 {
+                ratio2[i] = refine.select(ratios[i], ratio2[i]);
             }
         }
         // Outside and within the far-field limit (`beyond_far_field` is false).
@@ -650,6 +645,26 @@ fn surface_excess(x: &[Real; 3], axes: &[Real; 3], inv_axes: &[Real; 3]) -> (Rea
     (excess + (((e01 + e012) + e_one) + lo), hi)
 }
 
+/// [`surface_excess`] for [`LANES`] points, each lane bit for bit the scalar result (the same
+/// operations in the same order, [`exact::lanes`]).
+#[inline(always)]
+fn surface_excess_lanes(x: &[F4; 3], axes: &[Real; 3], inv_axes: &[Real; 3]) -> (F4, [F4; 3]) {
+    let mut hi = [F4::splat(0.0); 3];
+    let mut lo = F4::splat(0.0);
+    for i in 0..3 {
+        let q = x[i] * inv_axes[i];
+        let (p, e) = exact::lanes::product(q, axes[i]);
+        let correction = ((x[i] - p) - e) * inv_axes[i];
+        let (sq, sq_err) = exact::lanes::square(q);
+        hi[i] = sq;
+        lo = lo + (sq_err + 2.0 * q * correction);
+    }
+    let (s01, e01) = exact::lanes::sum(hi[0], hi[1]);
+    let (s012, e012) = exact::lanes::sum(s01, hi[2]);
+    let (excess, e_one) = exact::lanes::sum(s012, F4::splat(-1.0));
+    (excess + (((e01 + e012) + e_one) + lo), hi)
+}
+
 /// Error-free transformations of floating-point sums and products (Knuth, Dekker), without
 /// relying on a hardware fused multiply-add.
 pub(crate) mod exact {
@@ -688,6 +703,45 @@ pub(crate) mod exact {
         let p = a * a;
         let (ah, al) = split(a);
         (p, ((ah * ah - p) + 2.0 * ah * al) + al * al)
+    }
+
+    /// The same transformations on four lanes, operation for operation.
+    pub(crate) mod lanes {
+        use super::{split as split_scalar, SPLITTER};
+        use crate::lanes::F4;
+        use crate::Real;
+
+        #[inline(always)]
+        fn split(a: F4) -> (F4, F4) {
+            let c = SPLITTER * a;
+            let hi = c - (c - a);
+            (hi, a - hi)
+        }
+
+        /// [`super::sum`] lane by lane.
+        #[inline(always)]
+        pub(crate) fn sum(a: F4, b: F4) -> (F4, F4) {
+            let s = a + b;
+            let bb = s - a;
+            (s, (a - (s - bb)) + (b - bb))
+        }
+
+        /// [`super::product`] lane by lane, by the same `b` in every lane.
+        #[inline(always)]
+        pub(crate) fn product(a: F4, b: Real) -> (F4, F4) {
+            let p = a * b;
+            let (ah, al) = split(a);
+            let (bh, bl) = split_scalar(b);
+            (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+        }
+
+        /// [`super::square`] lane by lane.
+        #[inline(always)]
+        pub(crate) fn square(a: F4) -> (F4, F4) {
+            let p = a * a;
+            let (ah, al) = split(a);
+            (p, ((ah * ah - p) + 2.0 * ah * al) + al * al)
+        }
     }
 }
 
