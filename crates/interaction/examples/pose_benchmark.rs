@@ -9,6 +9,10 @@
 //! ellipsoids, aligned and in random attitudes, and the founding paper's pair.
 //!
 //! `cargo run --release -p surfgrav-interaction --example pose_benchmark [-- PER_PAIR [SEED]]`
+//!
+//! Environment: `POSE_BENCHMARK_VERBOSE` prints every case; `POSE_BENCHMARK_ONLY=TEXT` keeps the
+//! cases whose label contains TEXT; `POSE_BENCHMARK_KW4=N` times KW4 in N random attitudes
+//! (default 20); `POSE_BENCHMARK_PARAMETRISATION=aimed|azimuth-height` forces a rule.
 
 use surfgrav_interaction::work_precision::{
     independent_reference, interaction_error, measure, pose_set, SplitMix64,
@@ -134,8 +138,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         m.error_estimate
     );
     let mut rng = SplitMix64::new(seed ^ 0x004b_5734);
+    let attitudes: usize = std::env::var("POSE_BENCHMARK_KW4")
+        .map_or(Ok(20), |s| s.parse())
+        .map_err(|e| format!("POSE_BENCHMARK_KW4 must be a count: {e}"))?;
     let mut tilted = vec![];
-    for _ in 0..20 {
+    for _ in 0..attitudes.max(1) {
         let pose_a = Pose::new(Vec3::zeros(), rng.rotation_vector());
         let pose_b = Pose::new(rng.direction() * 2548.0, rng.rotation_vector());
         let m = measure(&primary, &pose_a, &secondary, &pose_b, options, None, 0.002)?;
@@ -156,7 +163,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     tilted.sort_by(|a, b| a.0.total_cmp(&b.0));
     let worst = tilted[tilted.len() - 1];
     println!(
-        "KW4 random attitudes (20): median {:.1} µs, worst {:.1} µs ({} evaluations, true error {:.1e}, estimate {:.1e})",
+        "KW4 random attitudes ({}): median {:.1} µs, worst {:.1} µs ({} evaluations, true error {:.1e}, estimate {:.1e})",
+        tilted.len(),
         tilted[tilted.len() / 2].0,
         worst.0,
         worst.1,
