@@ -46,7 +46,11 @@
 //!
 //! Contact: when the model has a contact distance and a step would end at or below it (or a stage
 //! lands in overlap), the step length from the last accepted sample is bisected until the contact
-//! time is found to round-off; the run stops with [`Termination::Contact`].
+//! time is found to round-off; the run stops with [`Termination::Contact`]. The adaptive
+//! integrators test the error of the bisected step that reaches the contact like that of any
+//! other step (one that fails is rejected and the contact approached in shorter steps), and the
+//! evenly spaced output over it comes from the method's own dense output. Every step of the
+//! fixed-step methods that ends clear, whole or subdivided, goes through the escape test.
 
 use crate::interpolate::{
     emit_step, hermite_or_end, state_between, with_even_output, EvenOutput, EvenStates, OutputClock,
@@ -499,30 +503,51 @@ fn classify(
     }
 }
 
+/// A step of a given length from a sample: the sample it reaches and its error norm (0 for the
+/// fixed-step methods, which have no estimate).
+type TrialStep<'s> =
+    dyn FnMut(&mut Dynamics<'_>, &Sample, Real) -> Result<(Sample, Real), InteractionError> + 's;
+
+/// A contact located within a step.
+struct Located {
+    event: ContactEvent,
+    /// The last clear sample of the bisection (before the closing Taylor step), the length of
+    /// the step from the start that reached it, and that step's error norm.
+    reached: Sample,
+    step: Real,
+    error: Real,
+}
+
 /// Bisects the step length from `from` (a clear sample) over (0, `h`] where a step of `h` touches.
 /// `None` when the bisection ends clear of contact (only a stage overlapped).
 fn locate_contact(
     dynamics: &mut Dynamics<'_>,
     from: &Sample,
     h: Real,
-    step: &mut dyn FnMut(&mut Dynamics<'_>, &Sample, Real) -> Result<Sample, InteractionError>,
-) -> Result<Option<ContactEvent>, DynamicsError> {
+    step: &mut TrialStep<'_>,
+) -> Result<Option<Located>, DynamicsError> {
     let (mut lo, mut hi) = (0.0, h);
     let mut best = *from;
+    let mut best_error = 0.0;
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
         if mid <= lo || mid >= hi {
             break;
         }
-        let result = step(dynamics, from, mid);
+        let (result, error) = match step(dynamics, from, mid) {
+            Ok((sample, error)) => (Ok(sample), error),
+            Err(e) => (Err(e), 0.0),
+        };
         match classify(dynamics, result, from.time)? {
             Trial::Clear(sample) => {
                 lo = mid;
                 best = sample;
+                best_error = error;
             }
             Trial::Touching => hi = mid,
         }
     }
+    let reached = best;
     // A stage of a step can overlap while the step's end would still be clear, so the bisection
     // may stop a little short of contact. Close the remaining gap δ with the local Taylor
     // expansion r + ṙδ + r̈δ²/2 (error O(δ³), δ is tiny) by Newton's method.
@@ -586,15 +611,20 @@ fn locate_contact(
         // A stage overshot into overlap while the trajectory itself stays clear.
         return Ok(None);
     }
-    Ok(Some(ContactEvent {
-        sample: best,
-        separation,
-        contact_distance,
-        direction: if separation > 0.0 {
-            r / separation
-        } else {
-            Vec3::zeros()
+    Ok(Some(Located {
+        event: ContactEvent {
+            sample: best,
+            separation,
+            contact_distance,
+            direction: if separation > 0.0 {
+                r / separation
+            } else {
+                Vec3::zeros()
+            },
         },
+        reached,
+        step: lo,
+        error: best_error,
     }))
 }
 
@@ -838,9 +868,11 @@ impl FixedStep {
         if let Trial::Clear(sample) = classify(dynamics, result, from.time)? {
             return Ok(Advance::Reached(sample));
         }
-        let mut step = |d: &mut Dynamics<'_>, s: &Sample, h: Real| self.one_step(d, s, h);
-        if let Some(event) = locate_contact(dynamics, from, h, &mut step)? {
-            return Ok(Advance::Contact(event));
+        let mut step = |d: &mut Dynamics<'_>, s: &Sample, h: Real| {
+            self.one_step(d, s, h).map(|sample| (sample, 0.0))
+        };
+        if let Some(located) = locate_contact(dynamics, from, h, &mut step)? {
+            return Ok(Advance::Contact(located.event));
         }
         if depth >= MAX_SUBDIVISION_DEPTH {
             return Err(DynamicsError::ContactUnresolved { time: from.time });
@@ -895,35 +927,25 @@ impl FixedStep {
             let target = grid.target(k);
             let h = target - current.time;
             let result = self.one_step(&mut dynamics, &current, h);
-            match classify(&dynamics, result, current.time)? {
-                Trial::Clear(mut next) => {
-                    next.time = target;
-                    emit_step(&mut output, &current, &next);
-                    current = next;
-                    observer(&current);
-                    if let Some(event) = escaped(model, self.escape_distance, &current) {
-                        return Ok(dynamics.summary(
-                            current,
-                            (k, 0),
-                            Termination::Escape(Box::new(event)),
-                        ));
+            // Every step that ends clear goes through the same checks below, whether it was
+            // taken whole or subdivided after a stage's overlap.
+            let mut next = match classify(&dynamics, result, current.time)? {
+                Trial::Clear(next) => next,
+                Trial::Touching => match self.advance(&mut dynamics, &current, h, 0)? {
+                    Advance::Reached(next) => next,
+                    Advance::Contact(event) => {
+                        emit_step(&mut output, &current, &event.sample);
+                        observer(&event.sample);
+                        return Ok(dynamics.contact_summary(event, (k - 1, 0)));
                     }
-                }
-                Trial::Touching => {
-                    let event = match self.advance(&mut dynamics, &current, h, 0)? {
-                        Advance::Reached(mut next) => {
-                            next.time = target;
-                            emit_step(&mut output, &current, &next);
-                            current = next;
-                            observer(&current);
-                            continue;
-                        }
-                        Advance::Contact(event) => event,
-                    };
-                    emit_step(&mut output, &current, &event.sample);
-                    observer(&event.sample);
-                    return Ok(dynamics.contact_summary(event, (k - 1, 0)));
-                }
+                },
+            };
+            next.time = target;
+            emit_step(&mut output, &current, &next);
+            current = next;
+            observer(&current);
+            if let Some(event) = escaped(model, self.escape_distance, &current) {
+                return Ok(dynamics.summary(current, (k, 0), Termination::Escape(Box::new(event))));
             }
         }
         Ok(dynamics.summary(current, (grid.count, 0), Termination::Completed))
@@ -1388,11 +1410,52 @@ impl Adaptive {
                 .get_or_insert_with(|| self.dense_step(dynamics, from, to, h, k).ok())
                 .as_ref();
             match step {
-                Some(step) => step.at(t).into_state(&from.state),
+                Some(step) => step.state(t, &from.state),
                 None => state_between(from, to, t),
             }
         };
         clock.emit_until(to.time, state_at, emit);
+    }
+
+    /// Emits the output times of the step that ends at the contact `located` from `from`: up
+    /// to the bisection's last clear sample by DOP853's own dense output of that step (its
+    /// stages recomputed, the same step bit for bit, and three dense stages), or for the other
+    /// pair, or DOP853 if a stage fails, by the quintic Hermite interpolant; beyond it, over the
+    /// closing Taylor step, by the Hermite interpolant of that step. No output time after the
+    /// contact is emitted.
+    #[allow(clippy::too_many_arguments)]
+    fn emit_contact_step(
+        &self,
+        dynamics: &mut Dynamics<'_>,
+        from: &Sample,
+        carry: &[Vec3; 4],
+        located: &Located,
+        k: &mut Stages,
+        clock: &mut OutputClock,
+        emit: &mut dyn FnMut(Real, &TwoBodyState),
+    ) {
+        let (reached, contact) = (&located.reached, &located.event.sample);
+        let dense = if self.pair == EmbeddedPair::Dop853 && located.step > 0.0 {
+            self.rk_step(dynamics, from, carry, located.step, k)
+                .and_then(|_| self.dense_step(dynamics, from, reached, located.step, k))
+                .ok()
+        } else {
+            None
+        };
+        let state_at = |t: Real| {
+            if t > reached.time {
+                state_between(reached, contact, t)
+            } else if let Some(step) = &dense {
+                if t <= from.time {
+                    from.state
+                } else {
+                    step.state(t, &from.state)
+                }
+            } else {
+                state_between(from, reached, t)
+            }
+        };
+        clock.emit_until(contact.time, state_at, emit);
     }
 
     /// The adaptive loop shared by both pairs; `output` asks for evenly spaced states.
@@ -1485,17 +1548,36 @@ impl Adaptive {
                     let mut scratch: Stages = [[Vec3::zeros(); 4]; MAX_STAGES];
                     let mut step = |d: &mut Dynamics<'_>, s: &Sample, h: Real| {
                         self.rk_step(d, s, &carry, h, &mut scratch)
-                            .map(|(sample, _, _)| sample)
+                            .map(|(sample, _, error)| (sample, error))
                     };
-                    let Some(event) = locate_contact(&mut dynamics, &current, h_try, &mut step)?
+                    let Some(located) = locate_contact(&mut dynamics, &current, h_try, &mut step)?
                     else {
                         // Only a stage overlapped: reject and retry with a shorter step.
                         h = control.retry_shorter(h_try);
                         continue;
                     };
+                    if !located.error.is_finite() {
+                        return Err(DynamicsError::NonFinite { time: current.time });
+                    }
+                    if located.error > 1.0 {
+                        // The step that reaches contact fails the error test (a step touching
+                        // at its end or a stage has no estimate of its own, so its bisected
+                        // lengths are tested here): reject it like any other step and approach
+                        // the contact in steps the tolerance accepts.
+                        h = control.reject(located.step, located.error);
+                        continue;
+                    }
+                    let event = located.event;
                     if let Some((clock, emit)) = output.as_mut() {
-                        let state_at = |t| state_between(&current, &event.sample, t);
-                        clock.emit_until(event.sample.time, state_at, *emit);
+                        self.emit_contact_step(
+                            &mut dynamics,
+                            &current,
+                            &carry,
+                            &located,
+                            &mut k,
+                            clock,
+                            *emit,
+                        );
                     }
                     observer(&event.sample);
                     return Ok(dynamics.contact_summary(event, (control.steps, control.rejected)));
@@ -1530,6 +1612,18 @@ impl DenseStep {
             out[n] += (delta[n] + (beta[n] + (third[n] + inner * s1) * s) * s1) * s;
         }
         Phase(out)
+    }
+
+    /// The state at `time`: positions and velocities from [`DenseStep::at`], attitudes turned
+    /// uniformly from the step's first state `first` (the translation path's free spin, as
+    /// [`state_between`] turns them).
+    fn state(&self, time: Real, first: &TwoBodyState) -> TwoBodyState {
+        let mut state = self.at(time).into_state(first);
+        let elapsed = time.clamp(self.start, self.start + self.step) - self.start;
+        for body in [&mut state.body_a, &mut state.body_b] {
+            *body = body.spun(elapsed);
+        }
+        state
     }
 }
 
