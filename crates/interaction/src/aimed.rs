@@ -25,8 +25,12 @@
 //! $\cosh\theta\_\delta = 1 + \delta^2/(2\ell(\ell + \delta))$ as for a sphere of radius $\ell$
 //! ($\theta\_\delta \approx \delta/\ell$ near contact, $\ln(d/\ell)$ at distance $d = \ell + \delta$).
 //! Two polar rules are available, and the start level of each is predicted from the
-//! Bernstein ellipse through that singularity (error $\rho^{-2n}$ for $n$ nodes); the cheaper
-//! is used:
+//! Bernstein ellipse through that singularity (error $\rho^{-2n}$ for $n$ nodes). A singular
+//! curve (the rim of a focal disk, a focal ellipse) also passes beside the pole: each of a few
+//! points sampled on it has its own singularity $\theta\_L + i\theta\_{\delta'}$ ($\theta\_L$ its
+//! angle from the pole, $\delta'$ its height above X), and the far hemisphere, which the
+//! clustering maps cover sparsely, one at $\pi + 2i$; the start level is the largest of
+//! these predictions, and the grid with the fewest nodes is used:
 //!
 //! - Gauss–Legendre in $\cos\theta$ (the spherical product rule; with $2n$ azimuths it is
 //!   exact for spherical harmonics to degree $2n - 1$): $\rho = e^{\theta\_\delta}$. Best far
@@ -54,7 +58,7 @@
 
 use super::body::{Body, BodyShape};
 use super::kernel::{add_solid_node, FrameMap, NodeConstants, SolidBlock, SolidSums, BLOCK};
-use nalgebra::Matrix3;
+use nalgebra::{Complex, Matrix3};
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 use surfgrav_potentials::{Field, Potential};
@@ -183,25 +187,110 @@ pub(crate) fn grid_key(polar: u16, aim: &Aim) -> GridKey {
     }
 }
 
-/// The first level for singularity width `width` ($\theta\_\delta$) and clustering `cluster`: the
-/// Gauss–Legendre count whose error bound $\rho^{-2n}$ meets the tolerance, $\rho$ the Bernstein
-/// ellipse through the integrand's singularity nearest the pole (module docs).
-pub(crate) fn start_polar(width: Real, cluster: u8, tolerance: Real) -> u16 {
-    use nalgebra::Complex;
-    let table = CLUSTER_WIDTHS[usize::from(cluster)];
-    let u = if table.is_finite() {
-        let mu = (PI / table).asinh();
-        let r = (width / table).max(1.0);
-        Complex::new(r.acosh(), 0.5 * PI) / mu
-    } else {
-        // cos θ* = cosh(width) beyond the end t = 1, u = (1 − t)/2.
-        Complex::new(0.5 * (1.0 - width.cosh()), 0.0)
-    };
-    let z = u * 2.0 - Complex::new(1.0, 0.0);
-    let root = (z * z - Complex::new(1.0, 0.0)).sqrt();
-    let rho = (z + root).norm().max((z - root).norm()).max(1.0 + 1e-3);
-    let n = (1.0 / tolerance).ln() / (2.0 * rho.ln());
+/// The Gauss–Legendre count whose error bound $\rho^{-2n}$ meets the tolerance.
+fn polar_count(rho: Real, tolerance: Real) -> u16 {
+    let n = (1.0 / tolerance).ln() / (2.0 * rho.max(1.0 + 1e-3).ln());
     (n.ceil() as u16).clamp(4, super::rules::MAX_TRANSVERSE)
+}
+
+/// The parameter $\rho$ of the Bernstein ellipse of the polar rule's interval $u \in [0, 1]$
+/// through the image of a singularity at the complex polar angle `theta` (and its mirror
+/// images $-\theta$, $\bar\theta$), for the rule of clustering index `cluster`.
+fn bernstein(theta: Complex<Real>, cluster: u8) -> Real {
+    let table = CLUSTER_WIDTHS[usize::from(cluster)];
+    // The ellipse with foci ±1 through z: semi-major axis a = (|z − 1| + |z + 1|)/2,
+    // ρ = a + √(a² − 1) (moduli by square roots: `hypot` is several times slower).
+    let rho = |z: Complex<Real>| {
+        let modulus = |re: Real, im: Real| (re * re + im * im).sqrt();
+        let a = 0.5 * (modulus(z.re - 1.0, z.im) + modulus(z.re + 1.0, z.im));
+        a + (a * a - 1.0).max(0.0).sqrt()
+    };
+    if table.is_finite() {
+        let mu = (PI / table).asinh();
+        let u = asinh(theta / table) / mu;
+        // Both branches of the map's inverse: the integrand is even in θ, the map odd in u.
+        let one = Complex::new(1.0, 0.0);
+        rho(u * 2.0 - one).min(rho(-u.conj() * 2.0 - one))
+    } else {
+        // Gauss–Legendre in t = cos θ = 1 − 2u: z = 2u − 1 = −cos θ.
+        rho(-theta.cos())
+    }
+}
+
+/// $\operatorname{asinh} z = \ln(z + \sqrt{z^2 + 1})$ (either branch serves [`bernstein`],
+/// which takes both), with moduli by square roots.
+fn asinh(z: Complex<Real>) -> Complex<Real> {
+    let w = z * z + Complex::new(1.0, 0.0);
+    let r = (w.re * w.re + w.im * w.im).sqrt();
+    // The principal square root of w.
+    let re = (0.5 * (r + w.re)).max(0.0).sqrt();
+    let im = (0.5 * (r - w.re)).max(0.0).sqrt().copysign(w.im);
+    let v = z + Complex::new(re, im);
+    Complex::new(0.5 * (v.re * v.re + v.im * v.im).ln(), v.im.atan2(v.re))
+}
+
+/// A singularity standing for the far hemisphere, which the clustering maps cover with few
+/// nodes: with it the predicted first levels of far poses (gap 5 in `pose_benchmark`, where
+/// the nearest point alone predicts 11 to 13 polar nodes for the maps of widths 1 to 0.25)
+/// match the measured ones (15 to 21: the counts at which each map's error falls below
+/// $3\cdot10^{-13}$ against a 64-node reference).
+const ANTIPODE: Complex<Real> = Complex::new(PI, 2.0);
+
+/// The factor on the polar count predicted from the rim's singularities: their sphere-model
+/// singularities are weaker than the nearest point's, and their count over-predicts the
+/// measured one by about 1.25 on the pose set (seed 12, gaps 0.05 to 5).
+const RIM_WEIGHT: Real = 0.8;
+
+/// Beyond this width $\theta\_\delta$ of the nearest singularity the rim is not sampled:
+/// farther from Y the rim's points are all seen near the pole's direction; on the pose set
+/// (seed 12, gaps 0.05 to 5) thresholds of 1 and 1.5 give the same start levels, and the
+/// sampling (a few microseconds) would be a sizeable part of a far interaction's cost (1999
+/// KW4, 226 evaluations).
+const RIM_WIDTH: Real = 1.0;
+
+/// Points of the singular set sampled around its rim (besides the nearest point).
+const RIM_SAMPLES: usize = 8;
+
+/// The complex polar angles $\theta\_L + i\theta\_{\delta'}$ at which the integrand over X is
+/// singular, one per sampled point of Y's singular set (`points`, X's frame): $\theta\_L$ the
+/// angle on the unit sphere between the pole and the point's foot on X, $\theta\_{\delta'}$ the
+/// sphere model's width for its height $\delta'$ above the foot (module docs), with the
+/// largest stretch `stretch`.
+fn singular_angle(axes: &Vec3, pole: &Vec3, stretch: Real, q: &Vec3) -> Complex<Real> {
+    let foot = nearest_on_ellipsoid(axes, q);
+    let height = (q - foot).norm();
+    let direction = foot.component_div(axes);
+    let lateral = direction.cross(pole).norm().atan2(direction.dot(pole));
+    let width = (1.0 + height * height / (2.0 * stretch * (stretch + height))).acosh();
+    Complex::new(lateral.max(0.0), width)
+}
+
+/// The rim of Y's singular set sampled at [`RIM_SAMPLES`] points, Y's frame (none for a
+/// point or a ball).
+fn rim_samples(set: &SingularSet) -> ([Vec3; RIM_SAMPLES], usize) {
+    let mut points = [Vec3::zeros(); RIM_SAMPLES];
+    let (u, v) = match *set {
+        SingularSet::Ellipse(s) => {
+            // The semi-axes as vectors, the nonzero ones first (a segment: one, a point: none).
+            let mut axes = [Vec3::zeros(); 3];
+            let mut count = 0;
+            for i in (0..3).filter(|&i| s[i] > 0.0) {
+                axes[count][i] = s[i];
+                count += 1;
+            }
+            if count == 0 {
+                return (points, 0);
+            }
+            (axes[0], axes[1])
+        }
+        SingularSet::Circle(radius) => (Vec3::x() * radius, Vec3::y() * radius),
+        SingularSet::Ball(_) => return (points, 0),
+    };
+    for (k, point) in points.iter_mut().enumerate() {
+        let (sin, cos) = (TAU * k as Real / RIM_SAMPLES as Real).sin_cos();
+        *point = u * cos + v * sin;
+    }
+    (points, RIM_SAMPLES)
 }
 
 /// The engine's cache of unit-sphere grids.
@@ -435,18 +524,51 @@ pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Rea
         .position(|&w| w <= width)
         .unwrap_or(CLUSTER_WIDTHS.len() - 1)
         .max(1) as u8;
-    let polar_for = |cluster: u8| start_polar(width, cluster, tolerance);
-    let cluster = if polar_for(0) <= polar_for(clustered) {
-        0
+    // The singularities in θ: the nearest point's, on the pole's axis, and those of the rim
+    // of Y's singular set (a curve running past the pole converges more slowly than its
+    // nearest point alone predicts).
+    let mut angles = [Complex::new(0.0, width); RIM_SAMPLES];
+    let (rim, count) = if width < RIM_WIDTH {
+        rim_samples(&singular_set(y))
     } else {
-        clustered
+        ([Vec3::zeros(); RIM_SAMPLES], 0)
     };
-    Aim {
-        frame: Matrix3::from_columns(&[e1, e2, pole]),
-        cluster,
-        start: polar_for(cluster),
-        anisotropy,
+    for (angle, q) in angles.iter_mut().zip(&rim[..count]) {
+        *angle = singular_angle(&axes, &pole, stretch, &map.back(&(q - map.offset)));
     }
+    let angles = &angles[..count];
+    let polar_for = |cluster: u8| {
+        let nearest = polar_count(bernstein(Complex::new(0.0, width), cluster), tolerance);
+        let antipode = polar_count(bernstein(ANTIPODE, cluster), tolerance);
+        let rho = angles
+            .iter()
+            .map(|&theta| bernstein(theta, cluster))
+            .fold(Real::INFINITY, Real::min);
+        let rim = (RIM_WEIGHT * Real::from(polar_count(rho, tolerance))).ceil() as u16;
+        nearest.max(antipode).max(rim)
+    };
+    let mut best = Aim {
+        frame: Matrix3::from_columns(&[e1, e2, pole]),
+        cluster: 0,
+        start: polar_for(0),
+        anisotropy,
+    };
+    let mut best_cost = grid_key(best.start, &best).size();
+    // Candidates: the product rule and the tabulated maps from the weakest to two steps
+    // stronger than the nearest point asks for.
+    let strongest = (usize::from(clustered) + 2).min(CLUSTER_WIDTHS.len() - 1) as u8;
+    for cluster in 1..=strongest {
+        let candidate = Aim {
+            cluster,
+            start: polar_for(cluster),
+            ..best
+        };
+        let cost = grid_key(candidate.start, &candidate).size();
+        if cost < best_cost {
+            (best, best_cost) = (candidate, cost);
+        }
+    }
+    best
 }
 
 /// The node sums over the ellipsoid `e` on the grid `grid` turned by `aim` (the same terms as
