@@ -851,16 +851,18 @@ impl System<'_> {
         }
     }
 
-    /// The end of a run at the contact `p`, reached from `from`: emits the output times up to it,
-    /// reports its sample to `observer` and returns the termination.
+    /// The end of a run at the contact `p`, reached from `from`: emits the output times up to it
+    /// (from `dense`, the step's continuous extension, when given), reports its sample to
+    /// `observer` and returns the termination.
     fn stop_at_contact(
         &self,
         from: &Point,
         p: &Point,
+        dense: Option<&Dense>,
         output: &mut EvenStates<'_>,
         observer: &mut dyn FnMut(&Sample),
     ) -> Termination {
-        self.emit_between(from, p, None, output);
+        self.emit_between(from, p, dense, output);
         let event = self.contact_event(p);
         observer(&event.sample);
         Termination::Contact(Box::new(event))
@@ -932,7 +934,7 @@ pub(crate) fn integrate(
                     }
                     Advance::Contact(p) => {
                         let termination =
-                            system.stop_at_contact(&current, &p, &mut output, observer);
+                            system.stop_at_contact(&current, &p, None, &mut output, observer);
                         return Ok(finish(&system, &p, k - 1, 0, termination));
                     }
                 }
@@ -1000,14 +1002,83 @@ pub(crate) fn integrate(
                     }
                     None => {
                         let mut scratch: Stages = [[0.0; N]; MAX_STAGES];
+                        // (end, length, error norm) of the trial steps, so that the step
+                        // reaching the contact is error-tested like any other.
+                        let mut trials: Vec<(Point, Real, Real)> = Vec::new();
                         let mut one = |s: &mut System<'_>, from: &Point, h: Real| {
-                            s.pair_step(&settings, from, h, &mut scratch)
-                                .map(|(p, _)| p)
+                            s.pair_step(&settings, from, h, &mut scratch).map(|(p, e)| {
+                                trials.push((p, h, e));
+                                p
+                            })
                         };
-                        match system.advance(&current, h_try, MAX_SUBDIVISION_DEPTH, &mut one) {
+                        let advanced =
+                            system.advance(&current, h_try, MAX_SUBDIVISION_DEPTH, &mut one);
+                        // A contact reached by a pair step (not by the kick-drift-kick location,
+                        // which has no estimate): its length and error norm.
+                        let reaching = |p: &Point| {
+                            trials
+                                .iter()
+                                .rev()
+                                .find(|(end, _, _)| {
+                                    end.time == p.time && end.state.flat() == p.state.flat()
+                                })
+                                .map(|&(_, h, e)| (h, e))
+                        };
+                        match advanced {
                             Ok(Advance::Contact(p)) => {
-                                let termination =
-                                    system.stop_at_contact(&current, &p, &mut output, observer);
+                                let step = reaching(&p);
+                                if step.is_none() && p.time > current.time {
+                                    // Located by the kick-drift-kick fallback over a step the
+                                    // tolerance does not bound (a stage overshoots at the
+                                    // bisection's boundary): not trusted. Take the longest clear
+                                    // pair step that passed the error test as an ordinary step
+                                    // (retried, the same step bit for bit) and approach the
+                                    // contact from there.
+                                    let clear = trials
+                                        .iter()
+                                        .filter(|(end, _, e)| {
+                                            end.time > current.time
+                                                && *e <= 1.0
+                                                && !system.touching(&end.state)
+                                        })
+                                        .max_by(|a, b| a.0.time.total_cmp(&b.0.time));
+                                    if let Some(&(_, h_clear, _)) = clear {
+                                        control.retry_shorter(h_try);
+                                        h = h_clear;
+                                        continue;
+                                    }
+                                }
+                                if let Some((h_reach, error)) = step {
+                                    if !error.is_finite() {
+                                        return Err(DynamicsError::NonFinite {
+                                            time: current.time,
+                                        });
+                                    }
+                                    if error > 1.0 {
+                                        h = control.reject(h_reach, error);
+                                        continue;
+                                    }
+                                }
+                                // DOP853's output over the contact step from its own dense
+                                // output of that step (stages recomputed, bit for bit).
+                                let dense = match step {
+                                    Some((h_reach, _)) if settings.dense && output.is_some() => {
+                                        system
+                                            .pair_step(&settings, &current, h_reach, &mut k)
+                                            .ok()
+                                            .and_then(|_| {
+                                                system.dense(&current, &p, h_reach, &mut k).ok()
+                                            })
+                                    }
+                                    _ => None,
+                                };
+                                let termination = system.stop_at_contact(
+                                    &current,
+                                    &p,
+                                    dense.as_ref(),
+                                    &mut output,
+                                    observer,
+                                );
                                 let (steps, rejected) = (control.steps, control.rejected);
                                 return Ok(finish(&system, &p, steps, rejected, termination));
                             }
