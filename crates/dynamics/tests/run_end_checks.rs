@@ -76,7 +76,6 @@ fn relative_state(r: Real, v: Vec3) -> TwoBodyState {
 /// receding at separation 1.2519, beyond an escape distance of 1.2.
 #[test]
 fn a_subdivided_fixed_step_is_checked_for_escape() {
-    let model = spheres();
     let initial = relative_state(1.1, Vec3::new(-0.6, 2.0, 0.0));
     let (mu, r, v2, l): (Real, Real, Real, Real) = (2.0, 1.1, 4.36, 2.2);
     let energy = 0.5 * v2 - mu / r;
@@ -86,33 +85,39 @@ fn a_subdivided_fixed_step_is_checked_for_escape() {
         "the orbit must stay clear: r_p = {pericentre}"
     );
     let h = 0.7;
-    // Last step and a step in the middle of the run: both must stop at the first sample beyond
-    // the escape distance, at t = h.
-    for steps in [1, 10] {
-        let mut integrator = FixedStep::new(FixedScheme::RungeKutta4, h).unwrap();
-        integrator.set_escape_distance(Some(1.2)).unwrap();
-        let mut times = Vec::new();
-        let summary = integrator
-            .integrate(&model, &initial, 0.0, steps as Real * h, &mut |s| {
-                times.push(s.time)
-            })
-            .unwrap();
-        println!(
-            "{steps} steps: {:?} at t = {}, separation {:.6}, {} evaluations",
-            summary.termination.event_time(),
-            summary.last.time,
-            summary.last.state.separation(),
-            summary.force_evaluations
-        );
-        // One plain step costs 1 + 4 evaluations: more means the step was subdivided.
-        assert!(summary.force_evaluations > 5, "the step was not subdivided");
-        let Termination::Escape(event) = &summary.termination else {
-            panic!("{steps} steps: no escape: {:?}", summary.termination);
-        };
-        assert_eq!(event.sample.time, h);
-        assert!(event.separation > 1.2);
-        assert!(event.orbital_energy > 0.0);
-        assert_eq!(times, vec![0.0, h]);
+    // Last step and a step in the middle of the run, on both paths (the rotational one, `rigid`,
+    // checked every step's end already): both must stop at the first sample beyond the escape
+    // distance, at t = h.
+    for (path, model) in both_paths() {
+        for steps in [1, 10] {
+            let mut integrator = FixedStep::new(FixedScheme::RungeKutta4, h).unwrap();
+            integrator.set_escape_distance(Some(1.2)).unwrap();
+            let mut times = Vec::new();
+            let summary = integrator
+                .integrate(model.as_ref(), &initial, 0.0, steps as Real * h, &mut |s| {
+                    times.push(s.time)
+                })
+                .unwrap();
+            println!(
+                "{path}, {steps} steps: {:?} at t = {}, separation {:.6}, {} evaluations",
+                summary.termination.event_time(),
+                summary.last.time,
+                summary.last.state.separation(),
+                summary.force_evaluations
+            );
+            // One plain step costs 1 + 4 evaluations: more means the step was subdivided.
+            assert!(summary.force_evaluations > 5, "the step was not subdivided");
+            let Termination::Escape(event) = &summary.termination else {
+                panic!(
+                    "{path}, {steps} steps: no escape: {:?}",
+                    summary.termination
+                );
+            };
+            assert_eq!(event.sample.time, h);
+            assert!(event.separation > 1.2);
+            assert!(event.orbital_energy > 0.0);
+            assert_eq!(times, vec![0.0, h]);
+        }
     }
 }
 
