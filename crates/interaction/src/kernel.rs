@@ -629,6 +629,76 @@ pub struct LaminaIntegrals {
     pub evaluations: usize,
 }
 
+/// A block's plain sums of the lamina integrand (table frame), the components of
+/// [`LaminaSums`] before compensated summation over blocks.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct LaminaBlock {
+    /// $\sum_k w_k \Phi_k$.
+    pub(crate) potential: Real,
+    /// $\sum_k w_k a\_{n,k}$.
+    pub(crate) normal_acceleration: Real,
+    /// $\sum_k w_k a\_{n,k}\\, \mathbf x_k\times\hat{\mathbf n}$.
+    pub(crate) normal_moment: Vec3,
+    /// $\sum_k w_k \mathbf a_k$.
+    pub(crate) acceleration: Vec3,
+    /// $\sum_k w_k\\, \mathbf x_k\times\mathbf a_k$.
+    pub(crate) moment: Vec3,
+    /// $\sum_i (\Phi_i - \Phi_0)\\,\boldsymbol\nu_i$.
+    pub(crate) rim_potential_flux: Vec3,
+}
+
+/// The sizes of the lamina's terms ([`LaminaSums::force_magnitude`],
+/// [`LaminaSums::moment_magnitude`]), summed plainly over all nodes.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct LaminaMagnitudes {
+    pub(crate) force: Real,
+    pub(crate) moment: Real,
+}
+
+/// The lamina's area integrand at one node, added to a block's sums: the one place where the
+/// area terms of the force (normal form and the plain area check), the torques and the energy
+/// of a lamina are written (the fixed and aimed tables through [`lamina_sums`], the adaptive
+/// cubature node by node). `field` is the source's field at the node (source frame; `map`
+/// turns its acceleration back), `x` the node's position from the centre and `normal` the
+/// unit normal $\hat{\mathbf n}$ (table frame), `w` the node's area weight.
+#[inline(always)]
+pub(crate) fn add_lamina_area_node(
+    block: &mut LaminaBlock,
+    sizes: &mut LaminaMagnitudes,
+    field: &Field,
+    map: &FrameMap,
+    x: &Vec3,
+    normal: &Vec3,
+    w: Real,
+) {
+    let a = map.back(&field.acceleration);
+    let an = a.dot(normal);
+    block.potential += w * field.potential;
+    block.normal_acceleration += w * an;
+    block.normal_moment += x.cross(normal) * (w * an);
+    block.acceleration += a * w;
+    block.moment += x.cross(&a) * w;
+    sizes.force += w * an.abs();
+    sizes.moment += w * an.abs() * x.norm();
+}
+
+/// The lamina's rim integrand at one node, added to a block's sums: the potential `potential`
+/// less the reference $\Phi_0$ (the source's potential at the centre; $\oint\hat{\boldsymbol\nu}
+/// \\,\mathrm dl = 0$) times the weighted outward normal `nu` $= \boldsymbol\nu_i$.
+#[inline(always)]
+pub(crate) fn add_lamina_rim_node(
+    block: &mut LaminaBlock,
+    sizes: &mut LaminaMagnitudes,
+    potential: Real,
+    reference: Real,
+    nu: &Vec3,
+) {
+    let relative = potential - reference;
+    block.rim_potential_flux += nu * relative;
+    // The rounding of Φ itself stays in Φ − Φ₀ (see `SolidSums::potential_magnitude`).
+    sizes.force += (relative.abs() + potential.abs()) * nu.norm();
+}
+
 /// The lamina loop (table frame).
 #[inline(never)]
 pub(crate) fn lamina_sums<P: Potential + ?Sized>(
@@ -643,32 +713,22 @@ pub(crate) fn lamina_sums<P: Potential + ?Sized>(
     let mut normal_moment = CompensatedSum3::new();
     let mut acc = CompensatedSum3::new();
     let mut moment = CompensatedSum3::new();
-    let (mut force_size, mut moment_size) = (0.0, 0.0);
+    let mut sizes = LaminaMagnitudes::default();
     for (block_points, block_weights) in nodes
         .area_points()
         .chunks(BLOCK)
         .zip(nodes.area_weights().chunks(BLOCK))
     {
-        let (mut p, mut na, mut nm, mut ac, mut mo) =
-            (0.0, 0.0, Vec3::zeros(), Vec3::zeros(), Vec3::zeros());
+        let mut block = LaminaBlock::default();
         for (r, &w) in block_points.iter().zip(block_weights) {
             let field = source.field(&map.apply(r));
-            let a = map.back(&field.acceleration);
-            let x = r - c;
-            let an = a.dot(&n);
-            p += w * field.potential;
-            na += w * an;
-            nm += x.cross(&n) * (w * an);
-            ac += a * w;
-            mo += x.cross(&a) * w;
-            force_size += w * an.abs();
-            moment_size += w * an.abs() * x.norm();
+            add_lamina_area_node(&mut block, &mut sizes, &field, map, &(r - c), &n, w);
         }
-        potential.add(p);
-        normal_acc.add(na);
-        normal_moment.add(&nm);
-        acc.add(&ac);
-        moment.add(&mo);
+        potential.add(block.potential);
+        normal_acc.add(block.normal_acceleration);
+        normal_moment.add(&block.normal_moment);
+        acc.add(&block.acceleration);
+        moment.add(&block.moment);
     }
     let mut rim = CompensatedSum3::new();
     // ∮ ν̂ dl = 0 around the rim: the potential at the centre comes out of the rim sum.
@@ -678,15 +738,12 @@ pub(crate) fn lamina_sums<P: Potential + ?Sized>(
         .chunks(BLOCK)
         .zip(nodes.rim_weighted_normals().chunks(BLOCK))
     {
-        let mut s = Vec3::zeros();
+        let mut block = LaminaBlock::default();
         for (r, nu) in block_points.iter().zip(block_normals) {
             let phi = source.potential(&map.apply(r));
-            let relative = phi - reference;
-            s += nu * relative;
-            // The rounding of Φ itself stays in Φ − Φ₀ (see `SolidSums::potential_magnitude`).
-            force_size += (relative.abs() + phi.abs()) * nu.norm();
+            add_lamina_rim_node(&mut block, &mut sizes, phi, reference, nu);
         }
-        rim.add(&s);
+        rim.add(&block.rim_potential_flux);
     }
     LaminaSums {
         area_potential: potential.value(),
@@ -695,8 +752,8 @@ pub(crate) fn lamina_sums<P: Potential + ?Sized>(
         area_acceleration: acc.value(),
         area_moment: moment.value(),
         rim_potential_flux: rim.value(),
-        force_magnitude: force_size,
-        moment_magnitude: moment_size,
+        force_magnitude: sizes.force,
+        moment_magnitude: sizes.moment,
     }
 }
 

@@ -10,7 +10,10 @@ use crate::assembly::{
 };
 use crate::body::{with_field, Body, BodyShape};
 use crate::error::InteractionError;
-use crate::kernel::{solid_node, LaminaSums, SolidSums};
+use crate::kernel::{
+    add_lamina_area_node, add_lamina_rim_node, solid_node, FrameMap, LaminaBlock, LaminaMagnitudes,
+    LaminaSums, SolidSums,
+};
 use crate::options::{Interaction, Method};
 use crate::surface_choice::Placement;
 use surfgrav_potentials::Potential;
@@ -219,6 +222,42 @@ fn solid_adaptive(
     Ok((values, relative, estimate.evaluations, estimate.converged()))
 }
 
+/// The lamina's integrand at $(\varphi, s)$ for the adaptive cubature, from the shared node
+/// terms ([`add_lamina_area_node`] with the area weight $s$ of the polar coordinates,
+/// [`add_lamina_rim_node`] with the rim normal $(\cos\varphi, \sin\varphi, 0)$ spread evenly over
+/// $s \in [0, R]$): the energy, the normal force and the rim flux scaled by `distance` (so that
+/// every component has the energy's scale), the torque (normal form), the area form's axial
+/// torque.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn lamina_integrand<P: Potential + ?Sized>(
+    f: &P,
+    map: &FrameMap,
+    radius: Real,
+    reference: Real,
+    distance: Real,
+    phi: Real,
+    s: Real,
+    out: &mut [Real; 10],
+) {
+    let (sin, cos) = phi.sin_cos();
+    let outward = Vec3::new(cos, sin, 0.0);
+    let r = outward * s;
+    let mut node = LaminaBlock::default();
+    let mut sizes = LaminaMagnitudes::default();
+    let field = f.field(&map.apply(&r));
+    add_lamina_area_node(&mut node, &mut sizes, &field, map, &r, &Vec3::z(), s);
+    let rim = f.potential(&map.apply(&(outward * radius)));
+    add_lamina_rim_node(&mut node, &mut sizes, rim, reference, &outward);
+    out[0] = node.potential;
+    out[1] = node.normal_acceleration * distance;
+    out[2] = node.normal_moment.x;
+    out[3] = node.normal_moment.y;
+    out[4] = node.rim_potential_flux.x * distance;
+    out[5] = node.rim_potential_flux.y * distance;
+    out[6] = node.moment.z;
+}
+
 fn lamina_adaptive(
     integrator: &mut AdaptiveCubature<10>,
     radius: Real,
@@ -239,20 +278,7 @@ fn lamina_adaptive(
         // ∮ ν̂ dl = 0: Φ at the centre comes out of the rim integrand.
         let reference = f.potential(&p.map.apply(&Vec3::zeros()));
         integrator.integrate(rect, |phi: Real, s: Real, out: &mut [Real; 10]| {
-            let (sin, cos) = phi.sin_cos();
-            let r = Vec3::new(s * cos, s * sin, 0.0);
-            let field = f.field(&p.map.apply(&r));
-            let a = p.map.back(&field.acceleration);
-            let an = a.z;
-            let rim = Vec3::new(radius * cos, radius * sin, 0.0);
-            let rim_phi = f.potential(&p.map.apply(&rim)) - reference;
-            out[0] = s * field.potential;
-            out[1] = s * an * distance;
-            out[2] = s * an * r.y;
-            out[3] = -s * an * r.x;
-            out[4] = rim_phi * cos * distance;
-            out[5] = rim_phi * sin * distance;
-            out[6] = s * (r.x * a.y - r.y * a.x);
+            lamina_integrand(f, &p.map, radius, reference, distance, phi, s, out);
         })
     })?;
     let v = &estimate.value;
@@ -286,4 +312,67 @@ fn lamina_adaptive(
     let relative =
         relative_from_absolute(&values, force_error, torque_error, energy_error, distance);
     Ok((values, relative, evaluations, estimate.converged()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::lamina_sums;
+    use surfgrav_potentials::{Ellipsoid, Pose, UniformDisk};
+    use surfgrav_surfaces::{Lamina, LaminaNodes};
+
+    /// One lamina integrand: the adaptive cubature's integrand ([`lamina_integrand`]) and the
+    /// table loop ([`lamina_sums`], which evaluates its blocks through the batched
+    /// `fields_into` / `potentials_into`) give the same bits on the same node, for a triaxial
+    /// ellipsoid and a disk as the source, 64 nodes each (both go through
+    /// [`add_lamina_area_node`] and [`add_lamina_rim_node`]; a unit disk, so that the table's
+    /// area weight $1\cdot1\cdot s$ and rim normal $(\cos\varphi, \sin\varphi, 0)\cdot(1\cdot1)$ are
+    /// exactly the integrand's).
+    #[test]
+    fn the_adaptive_and_table_lamina_integrands_agree_bit_for_bit() {
+        let lamina = Lamina::new(1.0).unwrap();
+        let pose = Pose::new(Vec3::new(0.3, -0.4, 1.2), Vec3::new(0.4, 0.2, -0.7));
+        let map = FrameMap::between(&Pose::identity(), &pose).unwrap();
+        let ellipsoid = Ellipsoid::new(1.0, 0.7, 0.4, 1.0).unwrap();
+        let disk = UniformDisk::new(0.8, 1.0).unwrap();
+        let sources: [&dyn Potential; 2] = [&ellipsoid, &disk];
+        let distance = 1.3;
+        for source in sources {
+            let reference = source.potential(&map.apply(&Vec3::zeros()));
+            let mut nodes = LaminaNodes::default();
+            for i in 0..8 {
+                for j in 0..8 {
+                    let phi = 0.1 + 0.77 * Real::from(i);
+                    let s = 0.05 + 0.12 * Real::from(j);
+                    let (sin, cos) = phi.sin_cos();
+                    lamina.fill_nodes(
+                        &[(cos, sin, 1.0)],
+                        &[(s, 1.0)],
+                        &[(cos, sin, 1.0)],
+                        &mut nodes,
+                    );
+                    let sums = lamina_sums(&nodes, source, &map);
+                    let mut out = [0.0; 10];
+                    lamina_integrand(source, &map, 1.0, reference, distance, phi, s, &mut out);
+                    let table = [
+                        sums.area_potential,
+                        sums.area_normal_acceleration * distance,
+                        sums.area_normal_moment.x,
+                        sums.area_normal_moment.y,
+                        sums.rim_potential_flux.x * distance,
+                        sums.rim_potential_flux.y * distance,
+                        sums.area_moment.z,
+                    ];
+                    for (k, (got, want)) in out.iter().zip(&table).enumerate() {
+                        assert_eq!(
+                            got.to_bits(),
+                            want.to_bits(),
+                            "component {k} at phi {phi}, s {s}: {got:e} against {want:e}"
+                        );
+                    }
+                    assert!(out[0] < 0.0 && out[1] != 0.0, "phi {phi}, s {s}: {out:?}");
+                }
+            }
+        }
+    }
 }
