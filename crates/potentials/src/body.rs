@@ -106,13 +106,14 @@ impl TypedPotential<'_> {
     }
 
     /// The cost of one field evaluation relative to a spheroid's (measured on the engine's
-    /// node loop: a point or a sphere 0.2, a spheroid 1, a triaxial ellipsoid 3, a disk 3.5);
-    /// 1 for kinds not measured (a polyhedron, whose cost grows with its faces, goes to the
-    /// engine's mesh rules instead) and for a custom potential.
+    /// node loop: a point or a sphere 0.2, a spheroid 1, a triaxial ellipsoid 3, a disk 3.5;
+    /// a polyhedron 1.6 per face, [`crate::polyhedron::FIELD_COST_PER_FACE`]); 1 for a custom
+    /// potential.
     pub fn field_cost(&self) -> Real {
         match self {
             Self::PointMass(_) | Self::Sphere(_) => 0.2,
-            Self::Spheroid(_) | Self::Polyhedron(_) | Self::Custom => 1.0,
+            Self::Polyhedron(p) => p.field_cost(),
+            Self::Spheroid(_) | Self::Custom => 1.0,
             Self::Ellipsoid(_) => 3.0,
             Self::Disk(_) => 3.5,
         }
