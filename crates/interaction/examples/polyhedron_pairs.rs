@@ -8,13 +8,20 @@
 //! `cargo run --release -p surfgrav-interaction --example polyhedron_pairs` (`RAYON_NUM_THREADS=1`
 //! for the serial cost; CPU time is printed beside wall time, the mesh rule's node loop runs
 //! in parallel over chunks of faces).
+//!
+//! `-- --field-cost` measures one field evaluation (`Potential::field`, serial) of each
+//! polyhedron and of a homogeneous spheroid and a triaxial ellipsoid of the same size, at
+//! 1.05 to 12 circumscribing radii, and prints the ratio to the spheroid's and the
+//! polyhedron's ns per face: the figures behind `Polyhedron`'s `Potential::field_cost`.
 
 use std::path::PathBuf;
 use std::time::Instant;
 use surfgrav_interaction::{
     Body, Interaction, InteractionEngine, InteractionOptions, SurfaceChoice,
 };
-use surfgrav_potentials::{Ellipsoid, LengthUnit, Mesh, Polyhedron, Pose, Vec3};
+use surfgrav_potentials::{
+    Ellipsoid, LengthUnit, Mesh, Polyhedron, Pose, Potential, Spheroid, Vec3,
+};
 
 const G: f64 = 6.67408e-11;
 
@@ -122,6 +129,70 @@ fn run(name: &str, a: &Body, b: &Body, pose_b: &Pose) {
     }
 }
 
+/// Serial ns per `field` call of `body` over `points` (best of five passes: the machine is
+/// shared, the fastest pass is the least disturbed).
+fn ns_per_field(body: &dyn Potential, points: &[Vec3]) -> f64 {
+    let mut best = f64::INFINITY;
+    let mut sink = 0.0;
+    for _ in 0..5 {
+        let t = Instant::now();
+        for p in points {
+            sink += body.field(p).potential;
+        }
+        best = best.min(t.elapsed().as_secs_f64() * 1e9 / points.len() as f64);
+    }
+    assert!(sink.is_finite());
+    best
+}
+
+/// Points at `radii` circumscribing radii from the centroid, in a fixed spread of directions.
+fn shell(centre: &Vec3, radius: f64, radii: f64, count: usize) -> Vec<Vec3> {
+    // Fibonacci sphere: deterministic and even.
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..count)
+        .map(|i| {
+            let z = 1.0 - 2.0 * (i as f64 + 0.5) / count as f64;
+            let r = (1.0 - z * z).sqrt();
+            let phi = golden * i as f64;
+            centre + Vec3::new(r * phi.cos(), r * phi.sin(), z) * (radius * radii)
+        })
+        .collect()
+}
+
+/// The `--field-cost` table (module docs).
+fn field_cost(polyhedra: &[(&str, &Polyhedron)]) {
+    println!("field cost: ns per Potential::field (serial, best of 5), ratio to the spheroid's");
+    println!("| body | faces | radii | ns | ns/face | / spheroid | / ellipsoid | spheroid ns | ellipsoid ns |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for (name, p) in polyhedra {
+        let radius = p.circumscribing_radius();
+        let mass = p.mass();
+        let spheroid = Spheroid::new(radius, 0.6 * radius, mass)
+            .unwrap()
+            .with_gravitational_constant(G)
+            .unwrap();
+        let ellipsoid = Ellipsoid::new(radius, 0.8 * radius, 0.6 * radius, mass)
+            .unwrap()
+            .with_gravitational_constant(G)
+            .unwrap();
+        let faces = p.faces().len();
+        for radii in [1.05, 1.5, 2.5, 5.0, 7.0, 12.0] {
+            let count = (2_000_000 / faces).clamp(200, 20_000);
+            let points = shell(&p.centroid(), radius, radii, count);
+            let at_origin = shell(&Vec3::zeros(), radius, radii, 20_000);
+            let ns = ns_per_field(*p, &points);
+            let s = ns_per_field(&spheroid, &at_origin);
+            let e = ns_per_field(&ellipsoid, &at_origin);
+            println!(
+                "| {name} | {faces} | {radii} | {ns:.0} | {:.1} | {:.1} | {:.1} | {s:.0} | {e:.0} |",
+                ns / faces as f64,
+                ns / s,
+                ns / e
+            );
+        }
+    }
+}
+
 fn main() {
     let didymos = Mesh::read_vertex_facet_csv(
         shapes().join("Didymos_A_vert_met.csv"),
@@ -145,6 +216,7 @@ fn main() {
         .iter()
         .map(|v| v.x)
         .fold(f64::NEG_INFINITY, f64::max);
+    let didymos_polyhedron = primary.clone();
     let primary = Body::polyhedron(primary).unwrap();
     let secondary = Body::ellipsoid(
         Ellipsoid::with_density(103.6778, 79.7526, 66.4605, density)
@@ -170,7 +242,9 @@ fn main() {
     if std::env::args().any(|a| a == "--work-precision") {
         work_precision("Didymos", &primary, &secondary, &pose);
     }
-    run("Didymos", &primary, &secondary, &pose);
+    if !std::env::args().any(|a| a == "--field-cost") {
+        run("Didymos", &primary, &secondary, &pose);
+    }
 
     let alpha = Mesh::read_obj(shapes().join("kw4_alpha.obj"), LengthUnit::Kilometres).unwrap();
     let beta = Mesh::read_obj(shapes().join("kw4_beta.obj"), LengthUnit::Kilometres).unwrap();
@@ -187,6 +261,14 @@ fn main() {
         alpha.circumscribing_radius(),
         beta.circumscribing_radius()
     );
+    if std::env::args().any(|a| a == "--field-cost") {
+        field_cost(&[
+            ("Didymos", &didymos_polyhedron),
+            ("KW4 Beta", &beta),
+            ("KW4 Alpha", &alpha),
+        ]);
+        return;
+    }
     let alpha = Body::polyhedron(alpha).unwrap();
     let beta = Body::polyhedron(beta).unwrap();
     if std::env::args().any(|a| a == "--near") {

@@ -261,14 +261,7 @@ impl InteractionEngine {
         }
         if a.as_polyhedron().is_some() || b.as_polyhedron().is_some() {
             // Meshes have their own rules, contact test and choice of surface.
-            return super::mesh_pair::interact(
-                &self.options,
-                request == Request::Force,
-                a,
-                pose_a,
-                b,
-                pose_b,
-            );
+            return super::mesh_pair::interact(&self.options, request, a, pose_a, b, pose_b);
         }
         let separation = (pose_b.position - pose_a.position).norm();
         let exact = contact(a, pose_a, b, pose_b);

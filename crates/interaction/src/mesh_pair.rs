@@ -10,10 +10,13 @@
 //! at level $\ell$ of the ladder [`LEVELS`] with rule order $n\_\ell$ ($n^2$ points, degree
 //! $2n-1$) and subdivision threshold $\theta\_\ell$ it is cut into $k_f^2$ triangles, $k_f =
 //! \lceil h_f/(\theta\_\ell D_f)\rceil$. The ladder starts at the first level whose predicted
-//! error, the smaller of $\max_f e_f$ and 10 times $\sum_f (A_f/A)\\,e_f$ with $e_f =
-//! (h_f/(8k_fD_f))^{2n}$, is within 10 tolerances and stops when two successive
-//! levels agree to the tolerance, returning the finer, as the engine's other rules do. The
-//! estimate is the change between the levels, plus the disagreement of the two torque forms and
+//! error $E\_\ell$, the smaller of $\max_f e_f$ and 10 times $\sum_f (A_f/A)\\,e_f$, is within
+//! 50 tolerances (`START_FACTOR`), where $e_f$ is the worst and the mean over the face's
+//! pieces $p$ of $(h_f/(8k_fD_p))^{2n}$, $D_p$ the piece's own distance. It stops when two
+//! successive levels agree to the tolerance, returning the finer. The estimate is the change
+//! between the levels, times $\min(1, 30\\,E\_{\ell+1}/E\_\ell)$ from level 1 on (the model's
+//! convergence with a safety factor 30, `STEP_SAFETY`: far away one step of the rule order
+//! gains 4-5 digits that the plain change would leave unused), plus the disagreement of the two torque forms and
 //! of the two force forms ($-\rho\oint\Phi\\,\mathrm d\mathbf S$ and $\rho\oint\mathbf x\\,(\mathbf
 //! a\cdot\mathrm d\mathbf S)$, equal since $\nabla\cdot\mathbf a = 0$ in the integrated body),
 //! plus the rounding bound ($4\varepsilon\sum_k|t_k|$ per sum), plus the expansion's truncation
@@ -42,8 +45,9 @@
 //! $\Phi\_{\max} = GM/d\_{\min}$). The predicted cost of each is its node count times the cost
 //! of the field there (a polyhedron's: about $5$ ns per term of its local expansion of degree
 //! $N$, $(N+1)(N+2)/2$ terms, plus $2$ ns per term pair of the translation shared by the
-//! nodes; $6.8\\,(N+2)^2$ ns by its exterior expansion; 50 ns per face directly; an
-//! ellipsoid's 100 ns); the cheapest field and then the cheaper surface are taken.
+//! nodes; $6.8\\,(N+2)^2$ ns by its exterior expansion; directly, and for every other body,
+//! its [`Potential::field_cost`] times a spheroid's 40 ns: 1.6 per face for a polyhedron, 3
+//! for a triaxial ellipsoid); the cheapest field and then the cheaper surface are taken.
 //!
 //! # Performance (certified $10^{-10}$; example `polyhedron_pairs`, release, CPU time with
 //! `RAYON_NUM_THREADS=1` on a 2-core machine under load average 8–10)
@@ -51,19 +55,19 @@
 //! | pair | surface (chosen) | Polyhedron field | evaluations | CPU | estimate | error vs $10^{-13}$ over the other surface |
 //! |---|---|---|---:|---:|---:|---:|
 //! | Didymos (1,996 faces) + ellipsoid, 1180 m | ellipsoid (auto) | local, $N = 18$, $P = 41$ | 170 | 0.9–1.2 ms (was 1.75–2.3) | 8.4e-12 | 1.2e-14 |
-//! | same | mesh | (ellipsoid's closed form) | 49,902 | 10 ms | 8.0e-13 | 4.3e-15 |
-//! | KW4 Alpha (9,168) + Beta (2,292), 2540 m | Beta (auto) | local, $N = 19$, $P = 34$ | 29,798 | 25–37 ms (was 139–146) | 4.1e-11 | 6.5e-15 |
-//! | same | Alpha | Beta's exterior expansion | 119,186 | 150–190 ms | 9.9e-11 | 7.0e-15 |
+//! | same | mesh | (ellipsoid's closed form) | 49,902 | 10 ms | 7.7e-15 (was 8.0e-13) | 2.4e-15 |
+//! | KW4 Alpha (9,168) + Beta (2,292), 2540 m | Beta (auto) | local, $N = 19$, $P = 34$ | 29,798 | 25–37 ms (was 139–146) | 1.0e-12 (was 4.1e-11) | 6.5e-15 |
+//! | same | Alpha | Beta's exterior expansion | 119,186 | 150–190 ms | 1.9e-12 (was 9.9e-11) | 7.0e-15 |
 //!
 //! Error against cost with the automatic choice (`--work-precision`, same conditions):
 //!
 //! | tolerance | Didymos: evaluations, CPU, estimate, true | KW4: evaluations, CPU, estimate, true |
 //! |---|---|---|
 //! | 1e-4 | 82, 0.39 ms, 6.0e-6, 4.5e-10 | 11,462, 5.2 ms, 8.6e-6, 4.0e-11 |
-//! | 1e-6 | 82, 0.75 ms, 1.4e-7, 4.5e-10 | 29,798, 14 ms, 5.8e-9, 6.5e-15 |
-//! | 1e-8 | 122, 0.78 ms, 1.0e-9, 2.5e-12 | 29,798, 19 ms, 8.0e-11, 6.5e-15 |
-//! | 1e-10 | 170, 1.2 ms, 8.4e-12, 1.2e-14 | 29,798, 26 ms, 4.1e-11, 6.5e-15 |
-//! | 1e-12 | 226, 1.7 ms, 1.0e-13, 2.1e-15 | 57,302, 58 ms, 9.8e-15, 5.2e-15 |
+//! | 1e-6 | 82, 0.75 ms, 1.4e-7, 4.5e-10 | 32,091 (was 29,798: starts at level 0), 18 ms, 5.8e-9, 6.5e-15 |
+//! | 1e-8 | 122, 0.78 ms, 1.0e-9, 2.5e-12 | 29,798, 19 ms, 4.0e-11, 6.5e-15 |
+//! | 1e-10 | 170, 1.2 ms, 8.4e-12, 1.2e-14 | 29,798, 26 ms, 1.0e-12, 6.5e-15 |
+//! | 1e-12 | 226, 1.7 ms, 1.0e-13, 2.4e-15 | 57,302, 58 ms, 8.5e-15, 5.2e-15 |
 //!
 //! $V$ over either surface agrees to 1e-14 (Didymos) and 6e-15 (KW4). The node loop runs in
 //! parallel over chunks of faces, the local expansion four nodes at a time. The first
@@ -86,8 +90,8 @@ use super::error::{InteractionError, Side};
 use super::overlap::CONTACT_MARGIN;
 use super::surface_choice::{cancellation_radius, CANCELLATION_RATIO, FAR_FIELD_RATIO};
 use super::{
-    Interaction, InteractionEngine, InteractionOptions, Method, MethodChoice, SurfaceChoice,
-    ANALYTIC_RELATIVE_ERROR, ROUNDING_PER_TERM,
+    Interaction, InteractionEngine, InteractionOptions, Method, MethodChoice, Request,
+    SurfaceChoice, ANALYTIC_RELATIVE_ERROR, ROUNDING_PER_TERM,
 };
 use nalgebra::Matrix3;
 use rayon::prelude::*;
@@ -125,16 +129,36 @@ pub const LEVELS: [(usize, Real); 14] = [
 /// error; 10 keeps every start level of KW4 where the worst face puts it.
 const SHARE_FACTOR: Real = 10.0;
 
+/// The ladder starts at the first level predicted within this many tolerances
+/// ([`Geometry::start_level`]). Measured (true error against the same surface at
+/// $10^{-13}$, `examples/polyhedron_pairs --near`): the prediction is 3.4-7 times the true
+/// error for KW4 Alpha in Beta's field at 1800 m (levels 0-2) and 1.2-22 times for Didymos
+/// with the secondary 0.05 sizes away (levels 0-5; with the per-piece model); a level within
+/// 50 predicted tolerances is within the tolerance in every case but KW4's level 1 at
+/// $10^{-10}$ (5.4e-10), which the extrapolated change then certifies from level 2.
+const START_FACTOR: Real = 50.0;
+
+/// Safety factor on the model's ratio of two levels' errors when the change between them
+/// estimates the finer one's ([`Geometry::step_factor`]). Measured ratio of true errors over
+/// the model's (same cases as [`START_FACTOR`], levels 0-5): 0.26-0.64 for Didymos near
+/// contact (1.2 from level 4 to 5, where level 5's 2.4e-15 is rounding), 0.52 and 1.7 for
+/// KW4 (the latter where level 2's 2.9e-14 is rounding); 30 leaves a factor 18 over the
+/// worst.
+const STEP_SAFETY: Real = 30.0;
+
 /// Most pieces a face is cut into per edge.
 const MAX_PIECES: usize = 64;
 
 /// Share of the tolerance given to the expansion's truncation.
 const TRUNCATION_SHARE: Real = 0.05;
 
-/// Measured field costs (ns per evaluation, release build, this machine): a polyhedron's
-/// direct sum per face, its expansion per $(N+2)^2$ (Didymos at 2.5 radii, degree 40: 12 µs),
-/// and the mesh rule's own work per node (node, frame change, eight compensated sums).
-const NS_PER_FACE: Real = 50.0;
+/// Measured field costs (ns per evaluation, release build, this machine): a homogeneous
+/// spheroid's field (33 to 57 ns at 1.05 to 12 sizes, `polyhedron_pairs -- --field-cost`),
+/// the unit of [`Potential::field_cost`] by which every other closed form is scaled (a
+/// polyhedron's direct sum 1.6 per face, a triaxial ellipsoid 3, a disk 3.5), a polyhedron's
+/// expansion per $(N+2)^2$ (Didymos at 2.5 radii, degree 40: 12 µs), and the mesh rule's own
+/// work per node (node, frame change, eight compensated sums).
+const NS_PER_SPHEROID_FIELD: Real = 40.0;
 const NS_PER_HARMONIC: Real = 6.8;
 const NS_PER_MESH_NODE: Real = 250.0;
 /// The local expansion ([`LocalExpansion`]): per term $(n, m)$, $m \le n \le N$, of an
@@ -154,10 +178,13 @@ enum Contact {
     Overlapping,
 }
 
-/// The interaction of two bodies of which at least one is a polyhedron (see the module docs).
+/// The interaction of two bodies of which at least one is a polyhedron (see the module docs),
+/// certified for what `request` asks: over a mesh, [`Request::Force`] certifies the force alone
+/// (ladder changes and own error terms of the force); [`Request::Wrench`] and
+/// [`Request::Everything`] certify force, torques and energy.
 pub(crate) fn interact(
     options: &InteractionOptions,
-    force_only: bool,
+    request: Request,
     a: &Body,
     pose_a: &Pose,
     b: &Body,
@@ -198,7 +225,7 @@ pub(crate) fn interact(
     };
     let (x, px, y, py) = order(side, a, pose_a, b, pose_b);
     match x.shape() {
-        BodyShape::Mesh(mesh) => over_mesh(options, force_only, side, mesh, x, px, y, py),
+        BodyShape::Mesh(mesh) => over_mesh(options, request, side, mesh, x, px, y, py),
         _ => over_partner(options, side, a, pose_a, b, pose_b),
     }
 }
@@ -270,20 +297,17 @@ fn partner_nodes(x: &Body, y: &Body, d: Real, tol: Real) -> Real {
     150.0 * digits * digits * (1.0 + 3.0 / gap)
 }
 
-/// Predicted ns per evaluation of `y`'s field at `distance` from its centroid.
+/// Predicted ns per evaluation of `y`'s field at `distance` from its centroid: a polyhedron's
+/// exterior expansion where it meets `bound`, else the closed form's
+/// [`Potential::field_cost`] (relative to a spheroid's) in spheroid evaluations.
 fn field_cost(y: &Body, distance: Real, bound: Real) -> Real {
-    if let (Some(p), BodyShape::Mesh(mesh)) = (y.as_polyhedron(), y.shape()) {
+    if let Some(p) = y.as_polyhedron() {
         let radii = distance / p.circumscribing_radius();
-        return match p.expansion_degree(radii, bound) {
-            Some(n) => NS_PER_HARMONIC * ((n + 2) * (n + 2)) as Real,
-            None => NS_PER_FACE * mesh.len() as Real,
-        };
+        if let Some(n) = p.expansion_degree(radii, bound) {
+            return NS_PER_HARMONIC * ((n + 2) * (n + 2)) as Real;
+        }
     }
-    match y.shape() {
-        BodyShape::Disk(_) => 150.0,
-        BodyShape::Solid(_) => 100.0,
-        _ => 150.0,
-    }
+    NS_PER_SPHEROID_FIELD * y.potential().field_cost()
 }
 
 /// Radius of the set where `y`'s exterior field, continued inward, may be singular.
@@ -360,11 +384,20 @@ struct Geometry<'m> {
     ratio: Vec<Real>,
     /// $A_f / \sum_g A_g$.
     share: Vec<Real>,
+    /// X frame → Y frame: $\mathbf y = Q\mathbf x + \mathbf t$.
+    q: Matrix3<Real>,
+    t: Vec3,
+    /// Radius of Y's singular set.
+    singular: Real,
 }
 
 impl<'m> Geometry<'m> {
     fn new(mesh: &'m TriangleMesh, px: &Pose, y: &Body, py: &Pose) -> Self {
         let singular = singular_radius(y);
+        let rot_x = px.rotation.to_rotation_matrix().into_inner();
+        let rot_y = py.rotation.to_rotation_matrix().into_inner();
+        let q = rot_y.transpose() * rot_x;
+        let t = rot_y.transpose() * (px.position - py.position);
         let to_y = |v: &Vec3| py.to_body(&px.to_world(v));
         let ratio = (0..mesh.len())
             .map(|f| {
@@ -378,7 +411,51 @@ impl<'m> Geometry<'m> {
             .collect();
         let total: Real = areas.iter().sum::<Real>().max(Real::MIN_POSITIVE);
         let share = areas.iter().map(|a| a / total).collect();
-        Self { mesh, ratio, share }
+        Self {
+            mesh,
+            ratio,
+            share,
+            q,
+            t,
+            singular,
+        }
+    }
+
+    /// Face `f`'s model error at rule order `n` cut into `k` pieces per edge: the worst piece's
+    /// and the mean over its $k^2$ pieces, each piece of diameter $h_f/k$ at its own distance
+    /// $D_p$ (centre distance less $h_f/2k$) from the singular set, $e_p =
+    /// (h_f/(8kD_p))^{2n}$, at most the face's $(h_f/(8kD_f))^{2n}$. Near contact only the
+    /// pieces next to the partner are at $D_f$; the far side of a cut face is up to $h_f$
+    /// farther.
+    fn face_error(&self, f: usize, n: i32, k: usize) -> (Real, Real) {
+        let face = (self.ratio[f] / (8.0 * k as Real)).powi(2 * n);
+        if k == 1 {
+            return (face, face);
+        }
+        let [a, b, c] = self.mesh.faces()[f].map(|i| self.mesh.vertices()[i as usize]);
+        let piece = self.mesh.diameter(f) / k as Real;
+        let (e1, e2) = ((b - a) / k as Real, (c - a) / k as Real);
+        let (mut worst, mut sum): (Real, Real) = (0.0, 0.0);
+        let mut add = |centre: Vec3| {
+            let dist = (self.q * centre + self.t).norm() - self.singular - 0.5 * piece;
+            let e = if dist > 0.0 {
+                (piece / (8.0 * dist)).powi(2 * n).min(face)
+            } else {
+                face
+            };
+            worst = worst.max(e);
+            sum += e;
+        };
+        for i in 0..k {
+            for j in 0..k - i {
+                let o = a + e1 * i as Real + e2 * j as Real;
+                add(o + (e1 + e2) / 3.0);
+                if i + j + 1 < k {
+                    add(o + (e1 + e2) * (2.0 / 3.0));
+                }
+            }
+        }
+        (worst, sum / (k * k) as Real)
     }
 
     fn pieces(&self, f: usize, level: usize) -> usize {
@@ -401,21 +478,38 @@ impl<'m> Geometry<'m> {
         let n = LEVELS[level].0 as i32;
         let (mut worst, mut mean): (Real, Real) = (0.0, 0.0);
         for f in 0..self.mesh.len() {
-            let e = (self.ratio[f] / (8.0 * self.pieces(f, level) as Real)).powi(2 * n);
-            worst = worst.max(e);
-            mean += self.share[f] * e;
+            let (w, m) = self.face_error(f, n, self.pieces(f, level));
+            worst = worst.max(w);
+            mean += self.share[f] * m;
         }
         worst.min(SHARE_FACTOR * mean)
     }
 
-    /// The first level predicted within 10 tolerances: the next one is then expected to agree
-    /// with it to the tolerance. The model $(h/(8kD))^{2n}$ is calibrated on KW4 Beta in Alpha's
-    /// field (largest $h/D$ 0.027; true error 4.0e-11 at (2, 1.0), 7.6e-6 at (1, 1.0)); it only
-    /// sets the cost, the certificate is the two levels' agreement.
+    /// The first level predicted within [`START_FACTOR`] tolerances: the next one is then
+    /// expected to agree with it to the tolerance, or to be certified by the extrapolated
+    /// change ([`Self::step_factor`]). The model $(h/(8kD))^{2n}$ is calibrated on KW4 Beta in
+    /// Alpha's field (largest $h/D$ 0.027; true error 4.0e-11 at (2, 1.0), 7.6e-6 at (1, 1.0));
+    /// it only sets the cost, the certificate is the two levels' agreement.
     fn start_level(&self, tol: Real) -> usize {
         (0..LEVELS.len() - 1)
-            .find(|&l| self.predicted_error(l) <= 10.0 * tol)
+            .find(|&l| self.predicted_error(l) <= START_FACTOR * tol)
             .unwrap_or(LEVELS.len() - 2)
+    }
+
+    /// The factor on the change between levels `coarse` and `fine` that estimates the finer
+    /// level's error: [`STEP_SAFETY`] times the model's ratio of their predicted errors, at
+    /// most 1 (the plain change, the coarser level's error), and 1 from level 0 (one node per
+    /// piece, before the model's asymptotic regime) or where the model gives no ratio.
+    fn step_factor(&self, coarse: usize, fine: usize) -> Real {
+        if coarse == 0 || fine <= coarse {
+            return 1.0;
+        }
+        let ratio = self.predicted_error(fine) / self.predicted_error(coarse);
+        if ratio.is_finite() {
+            (STEP_SAFETY * ratio).clamp(0.0, 1.0)
+        } else {
+            1.0
+        }
     }
 }
 
@@ -443,7 +537,7 @@ struct Level {
 #[allow(clippy::too_many_arguments)]
 fn over_mesh(
     options: &InteractionOptions,
-    force_only: bool,
+    request: Request,
     side: Side,
     mesh: &TriangleMesh,
     x: &Body,
@@ -452,6 +546,7 @@ fn over_mesh(
     py: &Pose,
 ) -> Result<Interaction, InteractionError> {
     let tol = options.relative_tolerance;
+    let force_only = request == Request::Force;
     let d = (px.position - py.position).norm();
     let bound = truncation_bound(x, y, d, tol);
     let geometry = Geometry::new(mesh, px, y, py);
@@ -468,7 +563,7 @@ fn over_mesh(
     };
     let mut level = fixed.unwrap_or_else(|| geometry.start_level(tol));
     let mut evaluations = 0;
-    let mut previous: Option<(Interaction, Level)> = None;
+    let mut previous: Option<(Interaction, usize)> = None;
     loop {
         let sums = level_sums(&geometry, level, &q, &t, &source, density);
         evaluations += sums.evaluations;
@@ -481,9 +576,9 @@ fn over_mesh(
             r.level = Some(l as u16);
             return finite(r);
         }
-        if let Some((prev, _)) = previous {
+        if let Some((prev, prev_level)) = previous {
             let change = relative_change(&current, &prev, force_only);
-            let estimate = change + own;
+            let estimate = change * geometry.step_factor(prev_level, level) + own;
             let mut r = current;
             r.evaluations = evaluations;
             r.error_estimate = estimate;
@@ -501,7 +596,7 @@ fn over_mesh(
                 });
             }
         }
-        previous = Some((current, sums));
+        previous = Some((current, level));
         level += 1;
         if level >= LEVELS.len() {
             level = LEVELS.len() - 1;

@@ -340,6 +340,62 @@ fn didymos_standard_pair_at_1e_10() {
     assert!(r.evaluations <= 400, "{} evaluations", r.evaluations);
 }
 
+/// Didymos with its secondary 0.05 of the secondary's semi-major axis from the primary's
+/// farthest vertex, at 1e-10: the surface is the mesh's, in the ellipsoid's closed form. The
+/// other side is the ellipsoid's surface in the polyhedron's direct sum (no expansion reaches
+/// that close), 1,996 faces per evaluation: measured (`examples/polyhedron_pairs --near`,
+/// load 6-9) 152,744 evaluations and 15.8 s CPU against the mesh side's 188,919 and 40 ms.
+/// The engine sees this through `Polyhedron`'s `Potential::field_cost` (1.6 spheroid
+/// evaluations per face, `--field-cost`): with the former constant 1, one spheroid
+/// evaluation, it predicted the ellipsoid's side cheaper and took it. Within its estimate of
+/// the mesh side at 1e-13; the start level from the per-piece model (level 3, then 4 agrees
+/// to 5.2e-11): 126,979 evaluations, 188,919 before (levels 4 and 5).
+#[test]
+fn didymos_near_contact_integrates_over_the_mesh() {
+    let mesh = Mesh::read_vertex_facet_csv(
+        shapes().join("Didymos_A_vert_met.csv"),
+        shapes().join("Didymos_A_facet.csv"),
+        LengthUnit::Metres,
+    )
+    .unwrap();
+    let density = 2_103.985_767_887_719;
+    let polyhedron = Polyhedron::with_density(&mesh, density)
+        .unwrap()
+        .with_gravitational_constant(G)
+        .unwrap();
+    let max_x = polyhedron
+        .vertices()
+        .iter()
+        .map(|v| v.x)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let primary = Body::polyhedron(polyhedron).unwrap();
+    let secondary = Body::ellipsoid(
+        Ellipsoid::with_density(103.6778, 79.7526, 66.4605, density)
+            .unwrap()
+            .with_gravitational_constant(G)
+            .unwrap(),
+    )
+    .unwrap();
+    let pa = Pose::identity();
+    let pb = Pose::new(Vec3::new(max_x + 103.6778 * 1.05, 0.0, 0.0), Vec3::zeros());
+    let r = engine(1e-10, SurfaceChoice::Automatic)
+        .interact(&primary, &pa, &secondary, &pb)
+        .unwrap();
+    let reference = engine(1e-13, SurfaceChoice::A)
+        .interact(&primary, &pa, &secondary, &pb)
+        .unwrap();
+    let d = difference(&r, &reference);
+    println!(
+        "over {:?}: {} evaluations, level {:?}, estimate {:.2e}, true {:.2e}; reference {} evaluations",
+        r.integrated_over, r.evaluations, r.level, r.error_estimate, d, reference.evaluations
+    );
+    assert_eq!(r.integrated_over, Some(Side::A));
+    assert!(r.error_estimate <= 1e-10);
+    assert!(d <= r.error_estimate + reference.error_estimate);
+    // Snapshot of the work: 126,979 (levels 3 and 4); 188,919 before the per-piece model.
+    assert!(r.evaluations <= 130_000, "{} evaluations", r.evaluations);
+}
+
 /// The KW4 pair at 1e-10 (Alpha 9168 faces at 1970 kg/m³, Beta 2292 faces at 2810 kg/m³, 2540 m
 /// apart, and at 1800, 2200 and 3500 m in other attitudes): over Beta in Alpha's local
 /// expansion (degree 19 over Beta's ball; at 1800 m the choice is over Alpha, in Beta's
