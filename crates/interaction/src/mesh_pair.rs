@@ -35,7 +35,9 @@
 //! At node $k$ then $|\delta\Phi_k| \le b|\Phi_k|$ and $|\delta\mathbf a_k| \le b|\mathbf a_k|$,
 //! so each sum's truncation error is at most $b$ times the sum of the magnitudes of its terms:
 //! that is added to the estimate. $b$ is chosen so that this stays below 5 % of the tolerance.
-//! Near contact neither expansion is offered and the closed form is used.
+//! Near contact neither expansion is offered and the closed form is used; its own relative
+//! accuracy, [`POLYHEDRON_REL`] ($10^{-13}$: the direct sum cancels over the faces), enters
+//! as $b$ does.
 //!
 //! # Which surface
 //!
@@ -97,6 +99,7 @@ use nalgebra::Matrix3;
 use rayon::prelude::*;
 use std::sync::Arc;
 use surfgrav_potentials::polyhedron::LocalExpansion;
+use surfgrav_potentials::tolerance::POLYHEDRON_REL;
 use surfgrav_potentials::{Field, InertiaTensor, Polyhedron, Pose, Potential, Region};
 use surfgrav_surfaces::mesh::{
     point_triangle_distance, segment_distance, TriangleMesh, TriangleRule,
@@ -679,6 +682,8 @@ impl<'y> Source<'y> {
             if let Some((f, _)) = poly.field_expansion(p, self.bound) {
                 return (f, self.bound);
             }
+            // The direct sum's own relative accuracy (its terms cancel over the faces).
+            return (poly.field(p), POLYHEDRON_REL);
         }
         (self.potential.field(p), 0.0)
     }
