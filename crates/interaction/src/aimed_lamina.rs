@@ -17,6 +17,10 @@
 //!   $\cosh\eta = (s_c^2 + s_q^2 + h^2)/(2 s_c s_q)$ ($\eta \approx h/s_q$ near the disk): the
 //!   angle is split at $\varphi_q$ and $\varphi_q + \pi$ into two half-ranges clustered
 //!   toward $\varphi_q$.
+//!   Each radius $s_j$ of the radial rule has its own angular rule, from $\eta$ on its circle
+//!   $s = s_j$ (the narrower of the nearest singular point's and the rim's, below), never
+//!   with more nodes than the rule for the narrowest circle: inner circles, farther from
+//!   the singularity, take fewer angles (the first level is sized by the narrowest one).
 //!
 //! The rim integral has its own aim: the singular point nearest the rim circle, with the same
 //! angular model at $s_c = R$. The rule serves where the singular set comes within
@@ -157,7 +161,19 @@ pub(crate) struct LaminaAim {
     rim: ClusteredSide,
     /// The first level (the largest predicted side count).
     pub(crate) start: u16,
+    /// The area rule's singular points, as $(s_q, h)$: the nearest one and the one nearest
+    /// the rim, for the angular rule of each radius.
+    singular: [(Real, Real); 2],
+    /// The narrowest angular singularity $\eta_0$ (that of [`LaminaAim::angle`]).
+    angle_eta: Real,
+    /// The angular sides for $\eta = 2^k\eta_0$, $k = 0, 1, \dots$ (each radius takes the
+    /// one at or below its own $\eta$).
+    angles: [ClusteredSide; ANGLE_TABLE],
 }
+
+/// Entries of [`LaminaAim::angles`]: $\eta$ from $\eta_0$ to $2^{9}\eta_0$ (beyond about
+/// $\eta = 3$ the count no longer falls).
+const ANGLE_TABLE: usize = 10;
 
 /// The angular singularity $\eta$ on the circle of radius $s_c$ for a singular point at
 /// in-plane radius $s_q$ and height $h$ (module docs).
@@ -247,6 +263,15 @@ pub(crate) fn lamina_aim(
     let eta = angular_width(q.norm().min(radius), s_q, h).min(rim_eta);
     let mut angle = ClusteredSide::plan(PI, Complex::new(0.0, eta), tolerance);
     angle.predicted *= AREA_MARGIN;
+    let mut angles = [angle; ANGLE_TABLE];
+    for (k, side) in angles.iter_mut().enumerate().skip(1) {
+        let wider = eta * Real::from(1u32 << k);
+        let planned =
+            ClusteredSide::plan(PI, Complex::new(0.0, wider), tolerance).with_margin(AREA_MARGIN);
+        if planned.predicted < angle.predicted {
+            *side = planned;
+        }
+    }
     let (radial_origin, inward, outward) = if s_q >= radius {
         // Beyond the rim: one side from the rim inward, the singularity beyond its end.
         let singular = Complex::new(-(s_q - radius), h.max(1e-12 * radius));
@@ -292,6 +317,9 @@ pub(crate) fn lamina_aim(
         rim_centre,
         rim,
         start: (largest.ceil() as u16).min(crate::rules::MAX_TRANSVERSE),
+        singular: [(s_q, h), (q_rim.xy().norm(), q_rim.z.abs())],
+        angle_eta: eta,
+        angles,
     })
 }
 
@@ -302,7 +330,27 @@ impl LaminaAim {
         (scaled.ceil() as usize).max(MIN_NODES)
     }
 
-    /// The number of field evaluations at `level` (area nodes and rim nodes).
+    /// The angular side at radius `s`: the narrowest angular singularity of the two singular
+    /// points on the circle of radius `s`, never wider clustered than the whole rule's.
+    fn angle_at(&self, s: Real) -> ClusteredSide {
+        let eta = self
+            .singular
+            .iter()
+            .map(|&(s_q, h)| angular_width(s, s_q, h))
+            .fold(Real::INFINITY, Real::min);
+        // The tabulated side of the largest η not above this one (narrower: at least as
+        // many nodes as the circle's own plan would take).
+        let steps = (eta / self.angle_eta).log2().floor();
+        let k = if steps.is_finite() && steps > 0.0 {
+            (steps as usize).min(ANGLE_TABLE - 1)
+        } else {
+            0
+        };
+        self.angles[k]
+    }
+
+    /// The number of field evaluations at `level` (area nodes and rim nodes): at most this
+    /// (the angular count of each radius is at most that of the whole rule).
     pub(crate) fn size(&self, level: u16) -> usize {
         let radial: usize = [self.inward, self.outward]
             .iter()
@@ -322,6 +370,7 @@ pub(crate) struct LaminaWorkspace {
     angles: Vec<(Real, Real, Real)>,
     radial: Vec<(Real, Real)>,
     rim: Vec<(Real, Real, Real)>,
+    rows: Vec<(Real, Real, std::ops::Range<usize>)>,
     /// The last level's table; shared with the node loop only during an evaluation, so it is
     /// refilled in place.
     nodes: Arc<LaminaNodes>,
@@ -367,8 +416,9 @@ impl LaminaWorkspace {
             }
             Ok(())
         };
-        both_halves(self, &aim.angle, aim.angle_centre, &mut angles)?;
         both_halves(self, &aim.rim, aim.rim_centre, &mut rim)?;
+        let mut rows = std::mem::take(&mut self.rows);
+        rows.clear();
         for (side, sign) in [(aim.inward, -1.0), (aim.outward, 1.0)] {
             let Some(side) = side else { continue };
             let rule = self.rule(aim.count(&side, level))?;
@@ -378,14 +428,20 @@ impl LaminaWorkspace {
                 radial.push((s, w * dt));
             }
         }
+        for &(s, weight) in &radial {
+            let first = angles.len();
+            both_halves(self, &aim.angle_at(s), aim.angle_centre, &mut angles)?;
+            rows.push((s, weight, first..angles.len()));
+        }
         match Arc::get_mut(&mut self.nodes) {
-            Some(nodes) => lamina.fill_nodes(&angles, &radial, &rim, nodes),
+            Some(nodes) => lamina.fill_rows(&angles, &rows, &rim, nodes),
             None => {
                 let mut nodes = LaminaNodes::default();
-                lamina.fill_nodes(&angles, &radial, &rim, &mut nodes);
+                lamina.fill_rows(&angles, &rows, &rim, &mut nodes);
                 self.nodes = Arc::new(nodes);
             }
         }
+        self.rows = rows;
         self.angles = angles;
         self.radial = radial;
         self.rim = rim;

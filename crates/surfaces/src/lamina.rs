@@ -190,6 +190,40 @@ impl Lamina {
     }
 }
 
+impl Lamina {
+    /// As [`Lamina::fill_nodes`], but each radius with its own angles: `rows` as
+    /// $(s_j, \omega^s_j, a_j..b_j)$, the area nodes of radius $s_j$ at the angles
+    /// `angles[a_j..b_j]` (same form as in [`Lamina::fill_nodes`]); rows whose range is out of
+    /// `angles` contribute nothing.
+    pub fn fill_rows(
+        &self,
+        angles: &[(Real, Real, Real)],
+        rows: &[(Real, Real, std::ops::Range<usize>)],
+        rim: &[(Real, Real, Real)],
+        out: &mut LaminaNodes,
+    ) {
+        out.area_points.clear();
+        out.area_weights.clear();
+        for (s, weight_s, range) in rows {
+            let (s, weight_s) = (*s, *weight_s);
+            for &(cos, sin, weight_phi) in angles.get(range.clone()).unwrap_or(&[]) {
+                out.area_points.push(Vec3::new(s * cos, s * sin, 0.0));
+                out.area_weights.push(weight_phi * weight_s * s);
+            }
+        }
+        out.rim_points.clear();
+        out.rim_weighted_normals.clear();
+        for &(cos, sin, weight) in rim {
+            let outward = Vec3::new(cos, sin, 0.0);
+            out.rim_points.push(outward * self.radius);
+            out.rim_weighted_normals
+                .push(outward * (weight * self.radius));
+        }
+        out.centre = Vec3::zeros();
+        out.normal = Vec3::z();
+    }
+}
+
 impl Default for LaminaNodes {
     /// An empty table (no nodes; centre at the origin, normal $+\hat{\mathbf z}$), to be filled.
     fn default() -> Self {
@@ -344,6 +378,35 @@ impl LaminaNodes {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Rows that all take the same angles give the tensor table of [`Lamina::fill_nodes`],
+    /// node for node and bit for bit; rows with their own angles give each radius its angles.
+    #[test]
+    fn rows_with_common_angles_are_the_tensor_table() {
+        let lamina = Lamina::new(1.5).unwrap();
+        let angles = [(0.6, 0.8, 0.3), (-0.8, 0.6, 0.7), (0.0, -1.0, 1.1)];
+        let radial = [(0.2, 0.5), (1.1, 0.25)];
+        let rim = [(1.0, 0.0, 2.0), (0.0, 1.0, 4.0)];
+        let mut tensor = LaminaNodes::default();
+        lamina.fill_nodes(&angles, &radial, &rim, &mut tensor);
+        let rows: Vec<_> = radial.iter().map(|&(s, w)| (s, w, 0..3)).collect();
+        let mut by_rows = LaminaNodes::default();
+        lamina.fill_rows(&angles, &rows, &rim, &mut by_rows);
+        assert_eq!(tensor.area_points(), by_rows.area_points());
+        assert_eq!(tensor.area_weights(), by_rows.area_weights());
+        assert_eq!(tensor.rim_points(), by_rows.rim_points());
+        assert_eq!(
+            tensor.rim_weighted_normals(),
+            by_rows.rim_weighted_normals()
+        );
+        // Own angles per row: one angle at s = 0.2, two at s = 1.1; a range out of bounds
+        // contributes nothing.
+        let rows = [(0.2, 0.5, 0..1), (1.1, 0.25, 1..3), (0.7, 1.0, 2..9)];
+        lamina.fill_rows(&angles, &rows, &rim, &mut by_rows);
+        assert_eq!(by_rows.area_points().len(), 3);
+        assert_eq!(by_rows.area_weights()[0], 0.3 * 0.5 * 0.2);
+        assert_eq!(by_rows.area_points()[2], Vec3::new(0.0, -1.1, 0.0));
+    }
 
     #[test]
     fn constructor_rejects_bad_radius() {
