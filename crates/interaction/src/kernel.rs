@@ -720,9 +720,9 @@ pub(crate) fn lamina_sums<P: Potential + ?Sized>(
         .zip(nodes.area_weights().chunks(BLOCK))
     {
         let mut block = LaminaBlock::default();
-        for (r, &w) in block_points.iter().zip(block_weights) {
-            let field = source.field(&map.apply(r));
-            add_lamina_area_node(&mut block, &mut sizes, &field, map, &(r - c), &n, w);
+        let fields = block_fields::<P, true>(block_points, source, map);
+        for ((r, &w), field) in block_points.iter().zip(block_weights).zip(&fields) {
+            add_lamina_area_node(&mut block, &mut sizes, field, map, &(r - c), &n, w);
         }
         potential.add(block.potential);
         normal_acc.add(block.normal_acceleration);
@@ -739,9 +739,9 @@ pub(crate) fn lamina_sums<P: Potential + ?Sized>(
         .zip(nodes.rim_weighted_normals().chunks(BLOCK))
     {
         let mut block = LaminaBlock::default();
-        for (r, nu) in block_points.iter().zip(block_normals) {
-            let phi = source.potential(&map.apply(r));
-            add_lamina_rim_node(&mut block, &mut sizes, phi, reference, nu);
+        let fields = block_fields::<P, false>(block_points, source, map);
+        for (field, nu) in fields.iter().zip(block_normals) {
+            add_lamina_rim_node(&mut block, &mut sizes, field.potential, reference, nu);
         }
         rim.add(&block.rim_potential_flux);
     }
