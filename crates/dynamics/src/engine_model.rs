@@ -61,7 +61,7 @@ use surfgrav_interaction::{
     Body, Interaction, InteractionEngine, InteractionError as EngineError, InteractionOptions,
     Request,
 };
-use surfgrav_potentials::{InertiaTensor, Pose, Real, Symmetry as FieldSymmetry, Vec3};
+use surfgrav_potentials::{InertiaTensor, Pose, PoseExt, Real, Symmetry as FieldSymmetry, Vec3};
 use thiserror::Error;
 
 /// Two directions count as parallel (or a vector as lying in a plane) when the sine of the
@@ -294,7 +294,7 @@ impl EngineModel {
     }
 
     fn map_error(&self, error: EngineError, pose_a: &Pose, pose_b: &Pose) -> InteractionError {
-        let separation = (pose_b.position - pose_a.position).norm();
+        let separation = (pose_b.position() - pose_a.position()).norm();
         match error {
             EngineError::Overlap { separation } | EngineError::Touching { separation } => {
                 InteractionError::Overlap {
@@ -322,7 +322,7 @@ impl EngineModel {
     /// velocity (see the [module docs](self)): every body spherical or axisymmetric, all axes
     /// parallel, relative position and velocity in the common equatorial plane.
     pub fn is_central(&self, pose_a: &Pose, pose_b: &Pose, relative_velocity: &Vec3) -> bool {
-        let r = pose_b.position - pose_a.position;
+        let r = pose_b.position() - pose_a.position();
         self.common_axis(pose_a, pose_b)
             .is_some_and(|axis| match axis {
                 None => true,
@@ -420,7 +420,7 @@ impl InteractionModel for EngineModel {
     /// edge to edge); `None` otherwise (the engine's overlap error is then the event) and for
     /// two points.
     fn contact_distance(&self, pose_a: &Pose, pose_b: &Pose) -> Option<Real> {
-        let r = pose_b.position - pose_a.position;
+        let r = pose_b.position() - pose_a.position();
         let in_plane = match self.common_axis(pose_a, pose_b)? {
             None => true,
             Some(k) => cosine(&k, &r) <= ALIGNMENT_SINE,
@@ -584,14 +584,8 @@ impl SceneModel {
         // initial orientations.
         let placed = |r: Real| {
             (
-                Pose {
-                    position: Vec3::zeros(),
-                    rotation: pose_a.rotation,
-                },
-                Pose {
-                    position: direction * r,
-                    rotation: pose_b.rotation,
-                },
+                Pose::from_position_rotation(Vec3::zeros(), pose_a.rotation),
+                Pose::from_position_rotation(direction * r, pose_b.rotation),
             )
         };
         let (mass_a, mass_b) = (direct.mass_a(), direct.mass_b());

@@ -59,7 +59,7 @@ use crate::model::{InteractionError, InteractionModel};
 use crate::rigid;
 use crate::state::{Sample, TwoBodyState};
 use crate::tableau::{Tableau, DOP853, DOP853_D, DOP853_DENSE_A, DORMAND_PRINCE_54, MAX_STAGES};
-use surfgrav_potentials::{Pose, Real, Vec3};
+use surfgrav_potentials::{Pose, PoseExt, Real, Vec3};
 use thiserror::Error;
 
 /// Why a run failed.
@@ -363,14 +363,8 @@ impl<'m> Dynamics<'m> {
     }
     fn poses(&self, xa: &Vec3, xb: &Vec3) -> (Pose, Pose) {
         (
-            Pose {
-                position: *xa,
-                rotation: self.template.body_a.orientation,
-            },
-            Pose {
-                position: *xb,
-                rotation: self.template.body_b.orientation,
-            },
+            Pose::from_position_rotation(*xa, self.template.body_a.orientation),
+            Pose::from_position_rotation(*xb, self.template.body_b.orientation),
         )
     }
     fn accelerations(&mut self, xa: &Vec3, xb: &Vec3) -> Result<(Vec3, Vec3), InteractionError> {

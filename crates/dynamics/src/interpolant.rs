@@ -28,7 +28,7 @@
 //! [`InteractionError::OutsideRange`] (never extrapolates).
 
 use crate::model::{InteractionError, InteractionModel};
-use surfgrav_potentials::{Pose, Real, Vec3};
+use surfgrav_potentials::{Pose, PoseExt, Real, Vec3};
 
 /// Degrees tried on each interval, in order, before it is halved. One piece of high degree
 /// rather than several of low degree: where two pieces meet, their derivatives differ by up to
@@ -359,7 +359,7 @@ impl InterpolatedCentralPair {
     }
 
     fn separation(&self, pose_a: &Pose, pose_b: &Pose) -> Result<(Vec3, Real), InteractionError> {
-        let r = pose_b.position - pose_a.position;
+        let r = pose_b.position() - pose_a.position();
         let d = r.norm();
         if let Some(contact_distance) = self.contact_distance {
             if d < contact_distance {

@@ -14,7 +14,7 @@
 //! for diagnostics and output.
 
 use crate::state::TwoBodyState;
-use surfgrav_potentials::{InertiaTensor, Pose, Real, Vec3};
+use surfgrav_potentials::{InertiaTensor, Pose, PoseExt, Real, Vec3};
 use thiserror::Error;
 
 /// Force on A and the torques on both bodies about their own centroids, world frame, from one
@@ -234,7 +234,7 @@ impl InteractionModel for PointMasses {
         self.mass_b
     }
     fn force_on_a(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Vec3, InteractionError> {
-        let r = pose_b.position - pose_a.position;
+        let r = pose_b.position() - pose_a.position();
         let d = r.norm();
         if d == 0.0 {
             return Err(InteractionError::Coincident);
@@ -243,7 +243,7 @@ impl InteractionModel for PointMasses {
         check_force(r * (k / (d * d * d)), d)
     }
     fn potential_energy(&self, pose_a: &Pose, pose_b: &Pose) -> Result<Real, InteractionError> {
-        let d = (pose_b.position - pose_a.position).norm();
+        let d = (pose_b.position() - pose_a.position()).norm();
         if d == 0.0 {
             return Err(InteractionError::Coincident);
         }
@@ -303,7 +303,7 @@ where
     }
 
     fn separation(&self, pose_a: &Pose, pose_b: &Pose) -> Result<(Vec3, Real), InteractionError> {
-        let r = pose_b.position - pose_a.position;
+        let r = pose_b.position() - pose_a.position();
         let d = r.norm();
         if let Some(contact_distance) = self.contact_distance {
             if d < contact_distance {

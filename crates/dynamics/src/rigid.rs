@@ -68,7 +68,7 @@ use crate::model::{InteractionError, InteractionModel, Wrench};
 use crate::state::{BodyState, Sample, TwoBodyState};
 use crate::tableau::{Tableau, DOP853, DOP853_D, DOP853_DENSE_A, MAX_STAGES};
 use nalgebra::{Quaternion, UnitQuaternion};
-use surfgrav_potentials::{InertiaTensor, Pose, Real, Vec3};
+use surfgrav_potentials::{InertiaTensor, Pose, PoseExt, Real, Vec3};
 
 /// Components of the flat state: $\mathbf R_A, \mathbf R_B, \dot{\mathbf R}\_A, \dot{\mathbf R}\_B$
 /// (12), $\mathsf Q_A, \mathsf Q_B$ (8, scalar first), $\boldsymbol\Pi_A, \boldsymbol\Pi_B$ (6).
@@ -122,14 +122,8 @@ impl Rigid {
 
     fn poses(&self) -> (Pose, Pose) {
         (
-            Pose {
-                position: self.x[0],
-                rotation: self.q[0],
-            },
-            Pose {
-                position: self.x[1],
-                rotation: self.q[1],
-            },
+            Pose::from_position_rotation(self.x[0], self.q[0]),
+            Pose::from_position_rotation(self.x[1], self.q[1]),
         )
     }
 }

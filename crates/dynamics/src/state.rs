@@ -7,7 +7,7 @@
 //! it.
 
 use nalgebra::UnitQuaternion;
-use surfgrav_potentials::{Pose, Real, Vec3};
+use surfgrav_potentials::{Pose, PoseExt, Real, Vec3};
 
 /// Position, velocity, orientation and spin of one rigid body (world frame, problem units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,10 +35,7 @@ impl BodyState {
 
     /// Where the body is: centroid and orientation.
     pub fn pose(&self) -> Pose {
-        Pose {
-            position: self.position,
-            rotation: self.orientation,
-        }
+        Pose::from_position_rotation(self.position, self.orientation)
     }
 
     /// The same body with its attitude turned by its own angular velocity over `elapsed`:

@@ -81,10 +81,7 @@ fn interpolated_orbit_matches_direct_orbit() {
 #[test]
 fn outside_range_and_bad_setup_are_errors() {
     let table = table();
-    let at = |x: Real| Pose {
-        position: Vec3::new(x, 0.0, 0.0),
-        ..Pose::identity()
-    };
+    let at = |x: Real| Pose::from(Vec3::new(x, 0.0, 0.0));
     assert!(matches!(
         table.force_on_a(&at(0.0), &at(0.5)),
         Err(InteractionError::OutsideRange { .. })

@@ -10,13 +10,10 @@ use surfgrav_dynamics::{
     PointMasses, Sample,
 };
 use surfgrav_potentials::tolerance::FINITE_DIFFERENCE_REL;
-use surfgrav_potentials::{Pose, Real, Vec3};
+use surfgrav_potentials::{Pose, PoseExt, Real, Vec3};
 
 fn pose(x: Real, y: Real, z: Real) -> Pose {
-    Pose {
-        position: Vec3::new(x, y, z),
-        ..Pose::identity()
-    }
+    Pose::from(Vec3::new(x, y, z))
 }
 
 /// Fourth-order central difference of V with respect to A's position.
@@ -25,7 +22,7 @@ fn gradient_a(model: &dyn InteractionModel, a: &Pose, b: &Pose, h: Real) -> Vec3
     for i in 0..3 {
         let v = |s: Real| {
             let mut p = *a;
-            p.position[i] += s * h;
+            p.translation.vector[i] += s * h;
             model.potential_energy(&p, b).unwrap()
         };
         g[i] = (-v(2.0) + 8.0 * v(1.0) - 8.0 * v(-1.0) + v(-2.0)) / (12.0 * h);
@@ -44,14 +41,14 @@ fn force_is_minus_gradient_of_energy() {
     )
     .unwrap();
     let (a, b) = (pose(0.3, -1.0, 0.2), pose(-1.5, 1.1, 0.9));
-    let d = (b.position - a.position).norm();
+    let d = (b.position() - a.position()).norm();
     for model in [&point as &dyn InteractionModel, &pair] {
         let force = model.force_on_a(&a, &b).unwrap();
         let fd = -gradient_a(model, &a, &b, 1e-3 * d);
         let rel = (force - fd).norm() / force.norm();
         assert!(rel < FINITE_DIFFERENCE_REL, "relative difference {rel:e}");
         // Attraction: the force on A points toward B.
-        assert!(force.dot(&(b.position - a.position)) > 0.0);
+        assert!(force.dot(&(b.position() - a.position())) > 0.0);
     }
     let expected = -0.7 * 6.0 / d;
     assert!((point.potential_energy(&a, &b).unwrap() - expected).abs() < 1e-15);

@@ -11,7 +11,7 @@ use surfgrav_interaction::{
     MethodChoice, SurfaceChoice,
 };
 use surfgrav_potentials::{
-    Ellipsoid as SolidEllipsoid, Field, Pose, Potential, Region, Spheroid, Vec3,
+    Ellipsoid as SolidEllipsoid, Field, Pose, PoseExt, Potential, Region, Spheroid, Vec3,
 };
 use surfgrav_quadrature::{GaussLegendre, PeriodicTrapezoid, Rule1D};
 use surfgrav_surfaces::{BorrowedRule, EllipsoidSurface, Interval, SurfaceNodes};

@@ -9,7 +9,7 @@ use super::kernel::FrameMap;
 use super::options::{Interaction, Method, Request};
 use super::overlap::{check_nodes, Contact};
 use super::rules::{Parametrisation, TableKey};
-use surfgrav_potentials::{CoplanarDiskPair, Pose, Region, UniformDisk};
+use surfgrav_potentials::{CoplanarDiskPair, Pose, PoseExt, Region, UniformDisk};
 use surfgrav_surfaces::{Real, Vec3};
 
 /// The relative accuracy reported for the closed forms (the potentials crate's documented
@@ -145,7 +145,7 @@ fn check_point_formula(
         Region::OnSurface => Err(InteractionError::Touching { separation }),
         Region::Inside => Err(InteractionError::Overlap { separation }),
     };
-    region_error(o.potential().region(&pose_o.to_body(&pose_s.position)))?;
+    region_error(o.potential().region(&pose_o.to_body(&pose_s.position())))?;
     if s.has_surface() && separation <= s.bounding_radius() + o.bounding_radius() {
         let table = s.table(TableKey {
             parametrisation: Parametrisation::AzimuthHeight,
@@ -173,11 +173,11 @@ fn analytic_point(
     } else {
         (b, pose_b, a, pose_a, false)
     };
-    let field = o.potential().field_in_world(pose_o, &pose_s.position);
+    let field = o.potential().field_in_world(pose_o, &pose_s.position());
     let m = s.mass();
     let f_s = field.acceleration * m;
     let energy = field.potential * m;
-    let m_o = -(pose_s.position - pose_o.position).cross(&f_s);
+    let m_o = -(pose_s.position() - pose_o.position()).cross(&f_s);
     let values = if s_is_a {
         Values {
             force_on_a: f_s,
@@ -220,7 +220,7 @@ fn analytic_disk_pair(
     };
     let na = pose_a.rotation * Vec3::z();
     let nb = pose_b.rotation * Vec3::z();
-    let d = pose_b.position - pose_a.position;
+    let d = pose_b.position() - pose_a.position();
     let distance = d.norm();
     if na.cross(&nb).norm() > ALIGNMENT || na.dot(&d).abs() > ALIGNMENT * distance {
         return Ok(None);

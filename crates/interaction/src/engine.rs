@@ -19,7 +19,7 @@ use super::strategy::nested_doubling::NestedDoubling;
 use super::strategy::{Problem, Strategy};
 use super::surface_choice::choose_surface;
 use std::sync::Arc;
-use surfgrav_potentials::Pose;
+use surfgrav_potentials::{Pose, PoseExt};
 use surfgrav_quadrature::MINIMUM_EVALUATION_BUDGET;
 
 // The constants that were defined here, for the paths that name them.
@@ -56,7 +56,7 @@ pub struct InteractionEngine {
 }
 
 fn check_pose(pose: &Pose, body: Side) -> Result<(), InteractionError> {
-    if !pose.position.iter().all(|x| x.is_finite()) {
+    if !pose.position().iter().all(|x| x.is_finite()) {
         return Err(InteractionError::NonFinitePose {
             body,
             what: "position",
@@ -103,7 +103,7 @@ impl InteractionEngine {
     /// integral (with [`MethodChoice::Automatic`]; the other methods always integrate).
     ///
     /// ```
-    /// use surfgrav_potentials::{Pose, Spheroid, TypedPotential, Vec3};
+    /// use surfgrav_potentials::{Pose, PoseExt, Spheroid, TypedPotential, Vec3};
     /// use surfgrav_interaction::{
     ///     Body, Interaction, InteractionEngine, InteractionError, Method, Pair, PairRule,
     /// };
@@ -121,7 +121,7 @@ impl InteractionEngine {
     ///         if !both || pair.separation < 1e6 {
     ///             return Ok(None);
     ///         }
-    ///         let d = pair.pose_b.position - pair.pose_a.position;
+    ///         let d = pair.pose_b.position() - pair.pose_a.position();
     ///         let gm = pair.a.mass() * pair.b.mass();
     ///         let force_on_a = d * (gm / pair.separation.powi(3));
     ///         Ok(Some(Interaction {
@@ -263,7 +263,7 @@ impl InteractionEngine {
             // Meshes have their own rules, contact test and choice of surface.
             return super::mesh_pair::interact(&self.options, request, a, pose_a, b, pose_b);
         }
-        let separation = (pose_b.position - pose_a.position).norm();
+        let separation = (pose_b.position() - pose_a.position()).norm();
         let exact = contact(a, pose_a, b, pose_b);
         match exact {
             Contact::Overlapping => return Err(InteractionError::Overlap { separation }),

@@ -13,7 +13,7 @@
 
 use super::error::InteractionError;
 use nalgebra::{Matrix3, Rotation3};
-use surfgrav_potentials::{Field, Pose, Potential};
+use surfgrav_potentials::{Field, Pose, PoseExt, Potential};
 use surfgrav_surfaces::sum::{CompensatedSum, CompensatedSum3};
 use surfgrav_surfaces::{LaminaNodes, Real, SurfaceNodes, Vec3};
 
@@ -51,7 +51,7 @@ impl FrameMap {
         let rotation = (source.rotation.inverse() * integrated.rotation).to_rotation_matrix();
         let offset = source
             .rotation
-            .inverse_transform_vector(&(integrated.position - source.position));
+            .inverse_transform_vector(&(integrated.position() - source.position()));
         Self::new(&rotation, &offset)
     }
 

@@ -100,7 +100,7 @@ use rayon::prelude::*;
 use std::sync::Arc;
 use surfgrav_potentials::polyhedron::LocalExpansion;
 use surfgrav_potentials::tolerance::POLYHEDRON_REL;
-use surfgrav_potentials::{Field, InertiaTensor, Polyhedron, Pose, Potential, Region};
+use surfgrav_potentials::{Field, InertiaTensor, Polyhedron, Pose, PoseExt, Potential, Region};
 use surfgrav_surfaces::mesh::{
     point_triangle_distance, segment_distance, TriangleMesh, TriangleRule,
 };
@@ -193,7 +193,7 @@ pub(crate) fn interact(
     b: &Body,
     pose_b: &Pose,
 ) -> Result<Interaction, InteractionError> {
-    let separation = (pose_b.position - pose_a.position).norm();
+    let separation = (pose_b.position() - pose_a.position()).norm();
     match contact(a, pose_a, b, pose_b) {
         Contact::Overlapping => return Err(InteractionError::Overlap { separation }),
         Contact::Touching => return Err(InteractionError::Touching { separation }),
@@ -253,7 +253,7 @@ struct Plan {
 }
 
 fn plan(x: &Body, px: &Pose, y: &Body, py: &Pose, tol: Real) -> Option<Plan> {
-    let d = (px.position - py.position).norm();
+    let d = (px.position() - py.position()).norm();
     let min_distance = (d - x.bounding_radius()).max(0.0);
     let bound = truncation_bound(x, y, d, tol);
     let field_cost = field_cost(y, min_distance, bound);
@@ -354,10 +354,10 @@ fn point_formula(
     pose_b: &Pose,
 ) -> Result<Interaction, InteractionError> {
     let (s, ps, o, po) = order(sphere, a, pose_a, b, pose_b);
-    let field = o.potential().field(&po.to_body(&ps.position));
+    let field = o.potential().field(&po.to_body(&ps.position()));
     let force_on_s = po.rotation * field.acceleration * s.mass();
     let potential_energy = s.mass() * field.potential;
-    let ca_minus_cb = pose_a.position - pose_b.position;
+    let ca_minus_cb = pose_a.position() - pose_b.position();
     let (force_on_a, torque_on_a, torque_on_b) = match sphere {
         Side::A => (force_on_s, Vec3::zeros(), -ca_minus_cb.cross(&force_on_s)),
         Side::B => (
@@ -400,7 +400,7 @@ impl<'m> Geometry<'m> {
         let rot_x = px.rotation.to_rotation_matrix().into_inner();
         let rot_y = py.rotation.to_rotation_matrix().into_inner();
         let q = rot_y.transpose() * rot_x;
-        let t = rot_y.transpose() * (px.position - py.position);
+        let t = rot_y.transpose() * (px.position() - py.position());
         let to_y = |v: &Vec3| py.to_body(&px.to_world(v));
         let ratio = (0..mesh.len())
             .map(|f| {
@@ -550,14 +550,14 @@ fn over_mesh(
 ) -> Result<Interaction, InteractionError> {
     let tol = options.relative_tolerance;
     let force_only = request == Request::Force;
-    let d = (px.position - py.position).norm();
+    let d = (px.position() - py.position()).norm();
     let bound = truncation_bound(x, y, d, tol);
     let geometry = Geometry::new(mesh, px, y, py);
     let rot_x = px.rotation.to_rotation_matrix().into_inner();
     let rot_y = py.rotation.to_rotation_matrix().into_inner();
     // X frame → Y frame: y = q x + t.
     let q = rot_y.transpose() * rot_x;
-    let t = rot_y.transpose() * (px.position - py.position);
+    let t = rot_y.transpose() * (px.position() - py.position());
     let source = Source::new(y, bound, &t, mesh.bounding_radius(), &geometry, tol);
     let density = x.density();
     let fixed = match options.method {
@@ -881,12 +881,12 @@ fn assemble(side: Side, s: &Level, px: &Pose, py: &Pose, _density: Real) -> Inte
     let torque_x = px.rotation * s.torque;
     let (force_on_a, torque_on_a, torque_on_b) = match side {
         Side::A => {
-            let cab = px.position - py.position;
+            let cab = px.position() - py.position();
             (force_x, torque_x, -torque_x - cab.cross(&force_x))
         }
         Side::B => {
             // M_A = −M_B − (c_B − c_A) × F_B.
-            let cba = px.position - py.position;
+            let cba = px.position() - py.position();
             (-force_x, -torque_x - cba.cross(&force_x), torque_x)
         }
     };
@@ -1007,10 +1007,10 @@ fn over_partner(
         reason: "neither body has a surface to integrate over",
     })?;
     let poly: &Polyhedron = &shared;
-    let d = (px.position - py.position).norm();
+    let d = (px.position() - py.position()).norm();
     let bound = truncation_bound(x, y, d, tol);
     let radius = x.bounding_radius();
-    let centre = py.to_body(&px.position);
+    let centre = py.to_body(&px.position());
     let nodes = partner_nodes(x, y, d, tol);
     let local = local_cost(
         poly,
@@ -1122,7 +1122,7 @@ fn partner_truncation(x: &Body, poly: &Polyhedron, d: Real, bound: Real, r: &Int
 // ---------------------------------------------------------------------------------------------
 
 fn contact(a: &Body, pa: &Pose, b: &Body, pb: &Pose) -> Contact {
-    let d = (pb.position - pa.position).norm();
+    let d = (pb.position() - pa.position()).norm();
     if d > a.bounding_radius() + b.bounding_radius() {
         return Contact::Separated;
     }
@@ -1136,7 +1136,7 @@ fn contact(a: &Body, pa: &Pose, b: &Body, pb: &Pose) -> Contact {
     };
     let scale = m.bounding_radius().max(o.bounding_radius());
     let margin = CONTACT_MARGIN * scale;
-    let o_centre_in_m = poly.region(&pm.to_body(&po.position));
+    let o_centre_in_m = poly.region(&pm.to_body(&po.position()));
     let found = match o.shape() {
         BodyShape::Point => match o_centre_in_m {
             Region::Outside => Contact::Separated,
@@ -1302,8 +1302,8 @@ fn mesh_mesh(
             })
             .collect::<Vec<_>>()
     };
-    let fm = near_faces(m, pm, &pn.position, n.bounding_radius());
-    let fn_ = near_faces(n, pn, &pm.position, m.bounding_radius());
+    let fm = near_faces(m, pm, &pn.position(), n.bounding_radius());
+    let fn_ = near_faces(n, pn, &pm.position(), m.bounding_radius());
     let mut touching = false;
     for (t1, c1, h1) in &fm {
         for (t2, c2, h2) in &fn_ {

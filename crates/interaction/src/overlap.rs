@@ -23,7 +23,7 @@ use super::error::InteractionError;
 use super::kernel::FrameMap;
 use super::rules::{NodeTable, Parametrisation, TableKey};
 use nalgebra::Matrix3;
-use surfgrav_potentials::{Pose, Region};
+use surfgrav_potentials::{Pose, PoseExt, Region};
 use surfgrav_surfaces::{Real, Vec3};
 
 /// $F$ within this of 1 counts as touching: two rounding errors of a contact function of
@@ -80,7 +80,7 @@ fn region_contact(region: Region) -> Contact {
 
 /// The exact contact test (see the module docs).
 pub(crate) fn contact(a: &Body, pose_a: &Pose, b: &Body, pose_b: &Pose) -> Contact {
-    let d = pose_b.position - pose_a.position;
+    let d = pose_b.position() - pose_a.position();
     let distance = d.norm();
     if distance > a.bounding_radius() + b.bounding_radius() {
         return Contact::Separated;
@@ -96,10 +96,10 @@ pub(crate) fn contact(a: &Body, pose_a: &Pose, b: &Body, pose_b: &Pose) -> Conta
     }
     // A point against a body: where the point lies in the body (its own exact region test).
     if point_a && !matches!(b.shape(), BodyShape::FieldOnly | BodyShape::Surface(_)) {
-        return region_contact(b.potential().region(&pose_b.to_body(&pose_a.position)));
+        return region_contact(b.potential().region(&pose_b.to_body(&pose_a.position())));
     }
     if point_b && !matches!(a.shape(), BodyShape::FieldOnly | BodyShape::Surface(_)) {
-        return region_contact(a.potential().region(&pose_a.to_body(&pose_b.position)));
+        return region_contact(a.potential().region(&pose_a.to_body(&pose_b.position())));
     }
     let (Some(ma), Some(mb)) = (shape_matrix(a, pose_a), shape_matrix(b, pose_b)) else {
         return Contact::Unknown;
@@ -194,13 +194,13 @@ pub(crate) fn check_centroids(
     pose_y: &Pose,
     separation: Real,
 ) -> Result<(), InteractionError> {
-    if y.potential().region(&pose_y.to_body(&pose_x.position)) != Region::Outside
-        || x.potential().region(&pose_x.to_body(&pose_y.position)) != Region::Outside
+    if y.potential().region(&pose_y.to_body(&pose_x.position())) != Region::Outside
+        || x.potential().region(&pose_x.to_body(&pose_y.position())) != Region::Outside
     {
         return Err(InteractionError::Overlap { separation });
     }
     if let BodyShape::Surface(_) = x.shape() {
-        let q = pose_x.to_body(&pose_y.position);
+        let q = pose_x.to_body(&pose_y.position());
         let table = x.table(TableKey {
             parametrisation: Parametrisation::AzimuthHeight,
             transverse: 40,

@@ -12,7 +12,7 @@ use super::rules::{
     Parametrisation, TransverseRatio, CLUSTERING, MAX_TRANSVERSE, TRANSVERSE_RATIO,
 };
 use nalgebra::UnitQuaternion;
-use surfgrav_potentials::Pose;
+use surfgrav_potentials::{Pose, PoseExt};
 use surfgrav_surfaces::{Real, Vec3};
 
 /// Beyond this many bounding radii of the integrated body X between the centroids, the fixed
@@ -228,7 +228,7 @@ pub(crate) fn place(
 ) -> Result<Placement, InteractionError> {
     let relative = pose_x
         .rotation
-        .inverse_transform_vector(&(pose_y.position - pose_x.position));
+        .inverse_transform_vector(&(pose_y.position() - pose_x.position()));
     let axisymmetric = x.is_axisymmetric_surface();
     // Turn an axisymmetric surface about its axis so that Y lies in its x–z plane, x > 0.
     let turn = if axisymmetric && (relative.x != 0.0 || relative.y != 0.0) {
@@ -237,11 +237,8 @@ pub(crate) fn place(
         0.0
     };
     let rotation = pose_x.rotation * UnitQuaternion::from_axis_angle(&Vec3::z_axis(), turn);
-    let q = rotation.inverse_transform_vector(&(pose_y.position - pose_x.position));
-    let integration_pose = Pose {
-        position: pose_x.position,
-        rotation,
-    };
+    let q = rotation.inverse_transform_vector(&(pose_y.position() - pose_x.position()));
+    let integration_pose = Pose::from_position_rotation(pose_x.position(), rotation);
     let map = FrameMap::between(&integration_pose, pose_y)?;
     let distance = q.norm();
     let symmetric_tables = matches!(x.shape(), BodyShape::Solid(_) | BodyShape::Disk(_));
@@ -270,8 +267,8 @@ pub(crate) fn place(
     Ok(Placement {
         side,
         rotation,
-        position_x: pose_x.position,
-        position_y: pose_y.position,
+        position_x: pose_x.position(),
+        position_y: pose_y.position(),
         map,
         half_transverse,
         half_azimuth,

@@ -28,7 +28,7 @@ use super::{
 };
 use std::hint::black_box;
 use std::time::Instant;
-use surfgrav_potentials::Pose;
+use surfgrav_potentials::{Pose, PoseExt};
 use surfgrav_surfaces::{Real, Vec3};
 
 /// A rule of the engine to measure: a label for tables and the options that select it.
@@ -354,10 +354,8 @@ fn pose_set_body(kind: PoseSetKind, size: Real, rng: &mut SplitMix64) -> Body {
 /// exact contact test, bisected to $10^{-14}$ relative).
 fn touching_distance(a: &Body, pose_a: &Pose, b: &Body, pose_b: &Pose, direction: &Vec3) -> Real {
     use super::overlap::{contact, Contact};
-    let at = |d: Real| Pose {
-        position: pose_a.position + direction * d,
-        rotation: pose_b.rotation,
-    };
+    let at =
+        |d: Real| Pose::from_position_rotation(pose_a.position() + direction * d, pose_b.rotation);
     let (mut lo, mut hi) = (0.0, a.bounding_radius() + b.bounding_radius());
     while hi - lo > 1e-14 * hi {
         let mid = 0.5 * (lo + hi);
@@ -402,7 +400,7 @@ pub fn pose_set(seed: u64, gaps: &[Real], per_pair: usize) -> Vec<PoseCase> {
                 let mut pose_b = Pose::new(Vec3::zeros(), rotation_b);
                 let touch = touching_distance(&a, &pose_a, &b, &pose_b, &direction);
                 let size = a.bounding_radius().min(b.bounding_radius());
-                pose_b.position = direction * (touch + gap * size);
+                pose_b.translation.vector = direction * (touch + gap * size);
                 cases.push(PoseCase {
                     label: format!("{}-{} gap {gap} #{index}", kind_a.name(), kind_b.name()),
                     kinds: (kind_a, kind_b),

@@ -9,7 +9,7 @@ use surfgrav_interaction::{
     interact, Body, BodyShape, InteractionEngine, InteractionError, InteractionOptions,
     MethodChoice, Side, SurfaceChoice,
 };
-use surfgrav_potentials::{PointMass, Pose, Sphere, Spheroid, UniformDisk, Vec3};
+use surfgrav_potentials::{PointMass, Pose, PoseExt, Sphere, Spheroid, UniformDisk, Vec3};
 
 fn at(x: f64, y: f64, z: f64) -> Pose {
     pose([x, y, z], [0.0; 3])
@@ -150,10 +150,10 @@ fn non_finite_poses_are_rejected() {
             what: "position"
         })
     ));
-    let bad_rotation = Pose {
-        position: Vec3::new(3.0, 0.0, 0.0),
-        rotation: UnitQuaternion::new_unchecked(Quaternion::new(f64::INFINITY, 0.0, 0.0, 0.0)),
-    };
+    let bad_rotation = Pose::from_position_rotation(
+        Vec3::new(3.0, 0.0, 0.0),
+        UnitQuaternion::new_unchecked(Quaternion::new(f64::INFINITY, 0.0, 0.0, 0.0)),
+    );
     assert!(matches!(
         interact(&a, &Pose::identity(), &b, &bad_rotation),
         Err(InteractionError::NonFinitePose {

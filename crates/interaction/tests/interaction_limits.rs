@@ -8,7 +8,7 @@ mod interaction_support;
 use interaction_support::*;
 use std::f64::consts::PI;
 use surfgrav_interaction::{Body, Method, MethodChoice, SurfaceChoice};
-use surfgrav_potentials::{Pose, Spheroid, UniformDisk, Vec3};
+use surfgrav_potentials::{Pose, PoseExt, Spheroid, UniformDisk, Vec3};
 use surfgrav_quadrature::{GaussLegendre, Rule1D};
 
 /// A spheroid with c/a = 1 − δ approaches the point formula linearly in δ (its quadrupole is
@@ -59,7 +59,7 @@ fn laminas_match_the_closed_form_for_coplanar_disks() {
     let mut worst: f64 = 0.0;
     for separation in [1.6, 2.0, 4.0, 20.0] {
         let direction = pose_a.rotation * Vec3::new(0.6, 0.8, 0.0);
-        let pose_b = Pose::new(pose_a.position + direction * separation, Vec3::from(tilt));
+        let pose_b = Pose::new(pose_a.position() + direction * separation, Vec3::from(tilt));
         let closed = surfgrav_interaction::interact(&a, &pose_a, &b, &pose_b).unwrap();
         assert_eq!(closed.method, Method::AnalyticDiskPair);
         for surface in [SurfaceChoice::A, SurfaceChoice::B] {
@@ -107,7 +107,7 @@ fn lamina_rim_form_equals_the_area_integral() {
                     let field = b.potential().field_in_world(&pose_b, &world);
                     let w = sigma * s * ws * 2.0 * PI / n_phi as f64;
                     force += field.acceleration * w;
-                    torque += (world - pose_a.position).cross(&field.acceleration) * w;
+                    torque += (world - pose_a.position()).cross(&field.acceleration) * w;
                     energy += field.potential * w;
                 }
             }

@@ -11,7 +11,9 @@ use surfgrav_interaction::{
     integrate_over_solid, rules::azimuth_rule, Body, FrameMap, InteractionError,
     InteractionOptions, MethodChoice, SurfaceChoice,
 };
-use surfgrav_potentials::{Ellipsoid as SolidEllipsoid, Pose, Spheroid, UniformDisk, Vec3};
+use surfgrav_potentials::{
+    Ellipsoid as SolidEllipsoid, Pose, PoseExt, Spheroid, UniformDisk, Vec3,
+};
 use surfgrav_quadrature::{GaussLegendre, Rule1D};
 use surfgrav_surfaces::{BorrowedRule, EllipsoidSurface, Interval, SurfaceNodes};
 
@@ -101,7 +103,7 @@ fn pair(gap: std::ops::Range<f64>) -> impl Strategy<Value = Pair> {
                 let direction = Vec3::from(direction).normalize();
                 let pose_a = Pose::new(Vec3::from(position_a), rotation_vector(ra));
                 let pose_b = Pose::new(
-                    pose_a.position + direction * reach * (1.0 + gap),
+                    pose_a.position() + direction * reach * (1.0 + gap),
                     rotation_vector(rb),
                 );
                 Pair {
@@ -145,8 +147,8 @@ proptest! {
             prop_assert_eq!(r.force_on_b, -r.force_on_a);
             // Total angular momentum balance about the origin: M_A + M_B + c_A × F_A + c_B × F_B = 0.
             let total = r.torque_on_a + r.torque_on_b
-                + p.pose_a.position.cross(&r.force_on_a) + p.pose_b.position.cross(&r.force_on_b);
-            let scale = r.potential_energy.abs() * (1.0 + p.pose_a.position.norm() + p.pose_b.position.norm());
+                + p.pose_a.position().cross(&r.force_on_a) + p.pose_b.position().cross(&r.force_on_b);
+            let scale = r.potential_energy.abs() * (1.0 + p.pose_a.position().norm() + p.pose_b.position().norm());
             prop_assert!(total.norm() <= 16.0 * f64::EPSILON * scale, "{total:?}");
             prop_assert!(r.potential_energy < 0.0);
         }

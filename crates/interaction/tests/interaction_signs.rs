@@ -7,7 +7,8 @@ mod interaction_support;
 use interaction_support::*;
 use surfgrav_interaction::{Body, Method, MethodChoice, Side, SurfaceChoice};
 use surfgrav_potentials::{
-    Ellipsoid as SolidEllipsoid, PointMass, Pose, Potential, Sphere, Spheroid, UniformDisk, Vec3,
+    Ellipsoid as SolidEllipsoid, PointMass, Pose, PoseExt, Potential, Sphere, Spheroid,
+    UniformDisk, Vec3,
 };
 use surfgrav_surfaces::EllipsoidSurface;
 
@@ -129,7 +130,9 @@ fn sphere_surface_integral_equals_point_formula() {
         let point = exact.interact(&sphere, &pose_s, other, &pose_o).unwrap();
         assert_eq!(point.method, Method::AnalyticPoint);
         assert_eq!(point.torque_on_a, Vec3::zeros());
-        let field = other.potential().field_in_world(&pose_o, &pose_s.position);
+        let field = other
+            .potential()
+            .field_in_world(&pose_o, &pose_s.position());
         assert_eq!(point.force_on_a, field.acceleration * 2.0);
         assert_eq!(point.potential_energy, field.potential * 2.0);
         let mut quadrature = engine(options(1e-12, MethodChoice::FixedRules, SurfaceChoice::A));

@@ -15,7 +15,8 @@ use surfgrav_interaction::{
 };
 use surfgrav_potentials::polyhedron::REACH_RADII;
 use surfgrav_potentials::{
-    Ellipsoid, LengthUnit, Mesh, PointMass, Polyhedron, Pose, Sphere, Spheroid, UniformDisk, Vec3,
+    Ellipsoid, LengthUnit, Mesh, PointMass, Polyhedron, Pose, PoseExt, Sphere, Spheroid,
+    UniformDisk, Vec3,
 };
 
 fn shapes() -> PathBuf {
@@ -227,7 +228,7 @@ proptest! {
         let b = partner(kind);
         let dir = Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
         let pa = Pose::new(Vec3::new(0.3, -0.1, 0.2), Vec3::from(rot_a));
-        let pb = Pose::new(pa.position + dir * distance, Vec3::from(rot_b));
+        let pb = Pose::new(pa.position() + dir * distance, Vec3::from(rot_b));
         let over_a = engine(1e-10, SurfaceChoice::A).interact(&a, &pa, &b, &pb);
         let over_b = engine(1e-10, SurfaceChoice::B).interact(&a, &pa, &b, &pb);
         let (ra, rb) = match (over_a, over_b) {
@@ -522,7 +523,7 @@ fn local_expansion_keeps_the_estimate_certified() {
             let dir = Vec3::new(0.8 * t.cos(), 0.6, 0.8 * t.sin()).normalize();
             let pa = Pose::new(Vec3::new(0.1, -0.2, 0.05), Vec3::new(0.3, -0.2 * t, 0.1));
             let pb = Pose::new(
-                pa.position + dir * (radii * big_r),
+                pa.position() + dir * (radii * big_r),
                 Vec3::new(-0.4, 0.5, 0.3 * t),
             );
             let reference = engine(1e-13, SurfaceChoice::A)

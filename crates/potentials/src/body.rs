@@ -1,5 +1,5 @@
 use crate::{Ellipsoid, PointMass, Polyhedron, Real, Sphere, Spheroid, UniformDisk, Vec3};
-use nalgebra::UnitQuaternion;
+use nalgebra::{Translation3, UnitQuaternion};
 
 /// Potential and acceleration at one point, computed together (they share the expensive part:
 /// the confocal parameter, the elliptic integrals).
@@ -227,47 +227,120 @@ pub trait Potential: std::fmt::Debug + Send + Sync {
     }
 }
 
-/// Where a body is in the world: the position of its centroid and the rotation that takes
-/// body-frame vectors to world-frame vectors.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Pose {
-    /// World position of the centroid.
-    pub position: Vec3,
-    /// Body frame → world frame.
-    pub rotation: UnitQuaternion<Real>,
-}
+/// Where a body is in the world: nalgebra's [`Isometry3`](nalgebra::Isometry3), whose
+/// translation is the world position of the centroid and whose rotation takes body-frame
+/// vectors to world-frame vectors. [`PoseExt`] adds this crate's vocabulary (the position as a
+/// vector, points to and from the body frame) and [`Pose::new`](nalgebra::Isometry3::new)
+/// takes a position and a rotation vector (axis × angle, radians).
+///
+/// ```
+/// use surfgrav_potentials::{Pose, PoseExt, Vec3};
+/// let pose = Pose::new(Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, std::f64::consts::FRAC_PI_2));
+/// assert_eq!(pose.position(), Vec3::new(1.0, 0.0, 0.0));
+/// let r = pose.to_world(&Vec3::new(1.0, 0.0, 0.0));
+/// assert!((r - Vec3::new(1.0, 1.0, 0.0)).norm() < 1e-15);
+/// ```
+pub type Pose = nalgebra::Isometry3<Real>;
 
-impl Default for Pose {
-    fn default() -> Self {
-        Self::identity()
-    }
-}
+/// What a [`Pose`] offers beyond nalgebra's `Isometry3`, in this crate's words. The maps are
+/// those of the isometry on points, computed in the same order
+/// ($\mathbf r\_{\rm world} = R\\,\mathbf r\_{\rm body} + \mathbf t$,
+/// $\mathbf r\_{\rm body} = R^{-1}(\mathbf r\_{\rm world} - \mathbf t)$), so they agree bit for bit with
+/// [`Isometry3::transform_point`](nalgebra::Isometry3::transform_point) and
+/// [`Isometry3::inverse_transform_point`](nalgebra::Isometry3::inverse_transform_point).
+pub trait PoseExt {
+    /// A pose from the world position of the centroid and the body → world rotation.
+    fn from_position_rotation(position: Vec3, rotation: UnitQuaternion<Real>) -> Self;
 
-impl Pose {
-    /// The body frame coincides with the world frame.
-    pub fn identity() -> Self {
-        Self {
-            position: Vec3::zeros(),
-            rotation: UnitQuaternion::identity(),
-        }
-    }
-
-    /// A pose from a position and a rotation vector (axis × angle, radians).
-    pub fn new(position: Vec3, rotation_vector: Vec3) -> Self {
-        Self {
-            position,
-            rotation: UnitQuaternion::from_scaled_axis(rotation_vector),
-        }
-    }
+    /// World position of the centroid (the translation).
+    fn position(&self) -> Vec3;
 
     /// World point → body-frame point.
-    pub fn to_body(&self, r_world: &Vec3) -> Vec3 {
-        self.rotation
-            .inverse_transform_vector(&(r_world - self.position))
-    }
+    fn to_body(&self, r_world: &Vec3) -> Vec3;
 
     /// Body-frame point → world point.
-    pub fn to_world(&self, r_body: &Vec3) -> Vec3 {
-        self.rotation * r_body + self.position
+    fn to_world(&self, r_body: &Vec3) -> Vec3;
+}
+
+impl PoseExt for Pose {
+    #[inline]
+    fn from_position_rotation(position: Vec3, rotation: UnitQuaternion<Real>) -> Self {
+        Self::from_parts(Translation3::from(position), rotation)
+    }
+
+    #[inline]
+    fn position(&self) -> Vec3 {
+        self.translation.vector
+    }
+
+    #[inline]
+    fn to_body(&self, r_world: &Vec3) -> Vec3 {
+        self.rotation
+            .inverse_transform_vector(&(r_world - self.translation.vector))
+    }
+
+    #[inline]
+    fn to_world(&self, r_body: &Vec3) -> Vec3 {
+        self.rotation * r_body + self.translation.vector
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Point3;
+
+    /// The former `Pose` struct's formulas, kept here to prove the isometry maps the same
+    /// points to the same bits.
+    fn old_to_body(position: &Vec3, rotation: &UnitQuaternion<Real>, r: &Vec3) -> Vec3 {
+        rotation.inverse_transform_vector(&(r - position))
+    }
+    fn old_to_world(position: &Vec3, rotation: &UnitQuaternion<Real>, r: &Vec3) -> Vec3 {
+        rotation * r + position
+    }
+
+    fn bits(v: &Vec3) -> [u64; 3] {
+        [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
+    }
+
+    #[test]
+    fn isometry_maps_match_the_former_pose_bit_for_bit() {
+        let poses = [
+            (Vec3::zeros(), Vec3::zeros()),
+            (Vec3::new(2.55, 0.0, 0.0), Vec3::new(0.0, 0.0, 0.7)),
+            (Vec3::new(-1.3, 4.1e3, 7.0e-3), Vec3::new(0.3, -1.1, 2.9)),
+            (
+                Vec3::new(1.5e11, -2.0e10, 3.3e9),
+                Vec3::new(-3.0, 0.1, 0.05),
+            ),
+            (Vec3::new(1e-9, 1e-9, -1e-9), Vec3::new(1e-8, 0.0, 3.1)),
+        ];
+        let points = [
+            Vec3::new(1.0, 2.0, 3.0),
+            Vec3::new(-0.25, 1e-7, 9.5e4),
+            Vec3::new(1.5e11, -2.0e10, 3.3e9),
+            Vec3::new(0.0, 0.0, 0.0),
+        ];
+        let mut checked = 0;
+        for (position, rotation_vector) in poses {
+            let rotation = UnitQuaternion::from_scaled_axis(rotation_vector);
+            let pose = Pose::new(position, rotation_vector);
+            let parts = Pose::from_position_rotation(position, rotation);
+            assert_eq!(pose, parts);
+            assert_eq!(bits(&pose.position()), bits(&position));
+            for r in &points {
+                let body = old_to_body(&position, &rotation, r);
+                let world = old_to_world(&position, &rotation, r);
+                assert_eq!(bits(&pose.to_body(r)), bits(&body));
+                assert_eq!(bits(&pose.to_world(r)), bits(&world));
+                let p = Point3::from(*r);
+                assert_eq!(bits(&pose.inverse_transform_point(&p).coords), bits(&body));
+                assert_eq!(bits(&pose.transform_point(&p).coords), bits(&world));
+                assert_eq!(bits(&(pose * p).coords), bits(&world));
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 20);
+        assert_eq!(Pose::default(), Pose::identity());
     }
 }

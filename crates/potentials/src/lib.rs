@@ -44,7 +44,7 @@ pub mod sphere;
 pub mod spheroid;
 pub mod tolerance;
 
-pub use body::{Field, Pose, Potential, Region, Symmetry, TypedPotential};
+pub use body::{Field, Pose, PoseExt, Potential, Region, Symmetry, TypedPotential};
 pub use disk::*;
 pub use disk_pair::*;
 pub use ellipsoid::*;

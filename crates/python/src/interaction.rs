@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use surfgrav_interaction::{
     Interaction as EngineInteraction, InteractionEngine, InteractionError, InteractionOptions,
 };
-use surfgrav_potentials::{Pose, Vec3};
+use surfgrav_potentials::{Pose, PoseExt, Vec3};
 
 use crate::arrays;
 use crate::bodies::{Body, Core};
@@ -148,14 +148,8 @@ pub fn interact(
     let (ca, cb) = (Arc::clone(&a.get().core), Arc::clone(&b.get().core));
     let result = compute(py, move || {
         let mut engine = InteractionEngine::new(options).map_err(|e| input(e.to_string()))?;
-        let pose_a = Pose {
-            position: Vec3::zeros(),
-            rotation: qa,
-        };
-        let pose_b = Pose {
-            position,
-            rotation: qb,
-        };
+        let pose_a = Pose::from_position_rotation(Vec3::zeros(), qa);
+        let pose_b = Pose::from_position_rotation(position, qb);
         one(&mut engine, &ca, &cb, &pose_a, &pose_b).map_err(|e| input(e.to_string()))
     })?;
     Ok(Interaction { result })
@@ -277,14 +271,8 @@ fn batch(
             idx.iter()
                 .map(|&i| {
                     let p = positions[i];
-                    let pose_a = Pose {
-                        position: Vec3::zeros(),
-                        rotation: qa[i],
-                    };
-                    let pose_b = Pose {
-                        position: Vec3::new(p[0], p[1], p[2]),
-                        rotation: qb[i],
-                    };
+                    let pose_a = Pose::from_position_rotation(Vec3::zeros(), qa[i]);
+                    let pose_b = Pose::from_position_rotation(Vec3::new(p[0], p[1], p[2]), qb[i]);
                     one(&mut engine, a, b, &pose_a, &pose_b).map_err(|m| (i, m))
                 })
                 .collect()

@@ -12,7 +12,7 @@ use clap::{Parser, Subcommand};
 use serde::Serialize;
 
 use surfgrav_interaction::{InteractionEngine, InteractionOptions};
-use surfgrav_potentials::{Pose, Vec3};
+use surfgrav_potentials::{Pose, PoseExt, Vec3};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -515,7 +515,7 @@ fn field_commands(command: Command) -> Result<String, UserError> {
             );
             // Distances whose square overflows leave every force and error estimate non-finite:
             // that is input out of range, not a tolerance to relax.
-            let distance = pose_b.position.norm();
+            let distance = pose_b.position().norm();
             if !(distance * distance).is_finite() {
                 return Err(UserError(format!(
                     "--position {position}: values out of range: the squared distance {}² \

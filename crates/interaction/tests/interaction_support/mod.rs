@@ -11,7 +11,7 @@ use surfgrav_interaction::{
     Body, Interaction, InteractionEngine, InteractionError, InteractionOptions, MethodChoice,
     SurfaceChoice,
 };
-use surfgrav_potentials::{Pose, Potential, Spheroid, Vec3};
+use surfgrav_potentials::{Pose, PoseExt, Potential, Spheroid, Vec3};
 use surfgrav_quadrature::{GaussLegendre, Rule1D};
 use surfgrav_surfaces::{CompensatedSum, CompensatedSum3, EllipsoidSurface};
 
@@ -123,7 +123,7 @@ pub fn volume_integrals(
                 let local = Vec3::new(a * r * st * cp, b * r * st * sp, c * r * ct);
                 let world = pose_a.to_world(&local);
                 let field = source.field_in_world(pose_b, &world);
-                let x = world - pose_a.position;
+                let x = world - pose_a.position();
                 let w = density * jacobian;
                 force.add(&(field.acceleration * w));
                 torque.add(&(x.cross(&field.acceleration) * w));
@@ -142,18 +142,15 @@ pub fn rotation_vector(u: [f64; 3]) -> Vec3 {
 /// The pose of B rotated by a small rotation `delta` (rotation vector, world frame) about
 /// its own centroid.
 pub fn rotated(p: &Pose, delta: &Vec3) -> Pose {
-    Pose {
-        position: p.position,
-        rotation: UnitQuaternion::from_scaled_axis(*delta) * p.rotation,
-    }
+    Pose::from_position_rotation(
+        p.position(),
+        UnitQuaternion::from_scaled_axis(*delta) * p.rotation,
+    )
 }
 
 /// The pose moved by `delta`.
 pub fn moved(p: &Pose, delta: &Vec3) -> Pose {
-    Pose {
-        position: p.position + delta,
-        rotation: p.rotation,
-    }
+    Pose::from_position_rotation(p.position() + delta, p.rotation)
 }
 
 /// Central difference with one Richardson step: (4 D(h/2) − D(h)) / 3, D(h) = (f(h) − f(−h))/2h.
