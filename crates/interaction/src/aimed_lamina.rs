@@ -230,11 +230,10 @@ fn nearest_to_rim(radius: Real, y: &Body, map: &FrameMap) -> Vec3 {
 
 /// The aimed rule is used only where Y's singular set comes within this many disk radii of
 /// the disk; farther, the fixed lamina table (azimuth clustered toward Y, halved by a mirror
-/// symmetry) is cheaper. Measured on the 48 disk cases of the random-pose set
-/// (`pose_benchmark`, seed 12, four per pair of kinds, gaps 0.05 to 5; load 8.5, so ±10 %):
-/// summed time 22.7 ms with the aimed rule everywhere, 22.3 ms within 1 radius (a spheroid
-/// beside a small disk at gap 0.05 then took 590 µs instead of 115), 19.0 ms within 2, 18.8 ms
-/// within 3; the median of the twelve gap-5 cases 100 µs everywhere, 65 µs within 2.
+/// symmetry) is cheaper. Chosen by timing the 48 disk cases of the random-pose set
+/// (`pose_benchmark`, seed 12) with the aimed rule everywhere and within 1, 2 and 3 radii:
+/// within 2 was as fast as within 3 and faster than the others (within 1, a spheroid beside a
+/// small disk at gap 0.05 took five times longer; everywhere, the far cases paid the aim).
 pub(crate) const AIMED_LAMINA_REACH: Real = 2.0;
 
 /// The aim for integrating over the lamina `lamina` (integration frame: the disk in its x–y

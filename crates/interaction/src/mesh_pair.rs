@@ -51,25 +51,25 @@
 //! its [`Potential::field_cost`] times a spheroid's 40 ns: 1.6 per face for a polyhedron, 3
 //! for a triaxial ellipsoid); the cheapest field and then the cheaper surface are taken.
 //!
-//! # Performance (certified $10^{-10}$; example `polyhedron_pairs`, release, CPU time with
-//! `RAYON_NUM_THREADS=1` on a 2-core machine under load average 8–10)
+//! # Evaluations and accuracy (certified $10^{-10}$; example `polyhedron_pairs`, which also
+//! times them: the README's Benchmarks)
 //!
-//! | pair | surface (chosen) | Polyhedron field | evaluations | CPU | estimate | error vs $10^{-13}$ over the other surface |
-//! |---|---|---|---:|---:|---:|---:|
-//! | Didymos (1,996 faces) + ellipsoid, 1180 m | ellipsoid (auto) | local, $N = 18$, $P = 41$ | 170 | 0.9–1.2 ms (was 1.75–2.3) | 8.4e-12 | 1.2e-14 |
-//! | same | mesh | (ellipsoid's closed form) | 49,902 | 10 ms | 7.7e-15 (was 8.0e-13) | 2.4e-15 |
-//! | KW4 Alpha (9,168) + Beta (2,292), 2540 m | Beta (auto) | local, $N = 19$, $P = 34$ | 29,798 | 25–37 ms (was 139–146) | 1.0e-12 (was 4.1e-11) | 6.5e-15 |
-//! | same | Alpha | Beta's exterior expansion | 119,186 | 150–190 ms | 1.9e-12 (was 9.9e-11) | 7.0e-15 |
+//! | pair | surface (chosen) | Polyhedron field | evaluations | estimate | error vs $10^{-13}$ over the other surface |
+//! |---|---|---|---:|---:|---:|
+//! | Didymos (1,996 faces) + ellipsoid, 1180 m | ellipsoid (auto) | local, $N = 18$, $P = 41$ | 170 | 8.4e-12 | 1.2e-14 |
+//! | same | mesh | (ellipsoid's closed form) | 49,902 | 7.7e-15 | 2.4e-15 |
+//! | KW4 Alpha (9,168) + Beta (2,292), 2540 m | Beta (auto) | local, $N = 19$, $P = 34$ | 29,798 | 1.0e-12 | 6.5e-15 |
+//! | same | Alpha | Beta's exterior expansion | 119,186 | 1.9e-12 | 7.0e-15 |
 //!
-//! Error against cost with the automatic choice (`--work-precision`, same conditions):
+//! Error against cost with the automatic choice (`--work-precision`):
 //!
-//! | tolerance | Didymos: evaluations, CPU, estimate, true | KW4: evaluations, CPU, estimate, true |
+//! | tolerance | Didymos: evaluations, estimate, true | KW4: evaluations, estimate, true |
 //! |---|---|---|
-//! | 1e-4 | 82, 0.39 ms, 6.0e-6, 4.5e-10 | 11,462, 5.2 ms, 8.6e-6, 4.0e-11 |
-//! | 1e-6 | 82, 0.75 ms, 1.4e-7, 4.5e-10 | 32,091 (was 29,798: starts at level 0), 18 ms, 5.8e-9, 6.5e-15 |
-//! | 1e-8 | 122, 0.78 ms, 1.0e-9, 2.5e-12 | 29,798, 19 ms, 4.0e-11, 6.5e-15 |
-//! | 1e-10 | 170, 1.2 ms, 8.4e-12, 1.2e-14 | 29,798, 26 ms, 1.0e-12, 6.5e-15 |
-//! | 1e-12 | 226, 1.7 ms, 1.0e-13, 2.4e-15 | 57,302, 58 ms, 8.5e-15, 5.2e-15 |
+//! | 1e-4 | 82, 6.0e-6, 4.5e-10 | 11,462, 8.6e-6, 4.0e-11 |
+//! | 1e-6 | 82, 1.4e-7, 4.5e-10 | 32,091, 5.8e-9, 6.5e-15 |
+//! | 1e-8 | 122, 1.0e-9, 2.5e-12 | 29,798, 4.0e-11, 6.5e-15 |
+//! | 1e-10 | 170, 8.4e-12, 1.2e-14 | 29,798, 1.0e-12, 6.5e-15 |
+//! | 1e-12 | 226, 1.0e-13, 2.4e-15 | 57,302, 8.5e-15, 5.2e-15 |
 //!
 //! $V$ over either surface agrees to 1e-14 (Didymos) and 6e-15 (KW4). The node loop runs in
 //! parallel over chunks of faces, the local expansion four nodes at a time. The first

@@ -52,11 +52,10 @@
 //! - $R_F$ and the three $R_D$ come from one fused duplication loop ([`crate::carlson`]).
 //! - The field is latency-bound, not division-bound: two rewrites that keep the accuracy were
 //!   measured slower against this code on the same machine (criterion, `ellipsoid/near` and
-//!   `batch_of_256/ellipsoid`, alternating runs, load 3-6): the three reciprocals $1/A_i$ of
-//!   each Newton step and of $w_i$ from one shared division (near 204-209 → 241-251 ns,
-//!   batch 39.1 → 41.1 µs) and Halley's iteration with a stop at $10^{-6}$ (fewer steps,
-//!   256 batch points: 2/3/4 steps 129/107/20 → 227/29/0, but near 211 → 224 ns and
-//!   r = 10⁶ 76 → 85 ns; the batch unchanged within noise).
+//!   `batch_of_256/ellipsoid`, alternating runs): the three reciprocals $1/A_i$ of each
+//!   Newton step and of $w_i$ from one shared division, and Halley's iteration with a stop at
+//!   $10^{-6}$ (fewer steps, 256 batch points: 2/3/4 steps 129/107/20 → 227/29/0, yet slower
+//!   near the body and far from it).
 //! - Batches ([`Potential::fields_into`], [`Potential::potentials_into`]) are evaluated four
 //!   points at a time, in lanes: each scalar operation is written once for the four lanes so
 //!   that the compiler issues it as one vector instruction, which hides the latency of the
