@@ -64,7 +64,6 @@ use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 use surfgrav_potentials::{Field, Potential};
 use surfgrav_quadrature::{GaussLegendre, Rule1D};
-use surfgrav_surfaces::sum::{CompensatedSum, CompensatedSum3};
 use surfgrav_surfaces::{EllipsoidSurface, Real, Vec3};
 
 #[path = "aimed_lamina.rs"]
@@ -621,11 +620,7 @@ pub(crate) fn aimed_sums<P: Potential + ?Sized, const FAR: bool, const FULL: boo
 ) -> SolidSums {
     let axes = e.semi_axes();
     let cofactor = Vec3::new(axes.y * axes.z, axes.x * axes.z, axes.x * axes.y);
-    let mut flux = CompensatedSum3::new();
-    let mut moment = CompensatedSum3::new();
-    let mut gradient_moment = CompensatedSum3::new();
-    let mut energy = CompensatedSum::new();
-    let mut acceleration_flux = CompensatedSum3::new();
+    let mut totals = super::kernel::SolidTotals::new();
     let mut sizes = super::kernel::SolidMagnitudes::default();
     let reference = source.potential(&map.apply(&Vec3::zeros()));
     let mut points = [Vec3::zeros(); BLOCK];
@@ -667,19 +662,7 @@ pub(crate) fn aimed_sums<P: Potential + ?Sized, const FAR: bool, const FULL: boo
                 &mut block, &mut sizes, &fields[k], map, w, &constants, reference,
             );
         }
-        flux.add(&block.flux);
-        if FULL {
-            moment.add(&block.moment);
-            gradient_moment.add(&block.gradient_moment);
-            energy.add(block.energy);
-        }
-        acceleration_flux.add(&block.acceleration_flux);
+        totals.add::<FULL>(&block);
     }
-    sizes.sums(
-        flux.value(),
-        moment.value(),
-        gradient_moment.value(),
-        energy.value(),
-        acceleration_flux.value(),
-    )
+    totals.finish(&sizes)
 }

@@ -271,6 +271,52 @@ pub(crate) struct SolidBlock {
     pub(crate) acceleration_flux: Vec3,
 }
 
+/// The compensated totals of [`SolidBlock`]s over a table: every solid loop adds its blocks
+/// here and finishes with the sizes (`FULL`: torques and energy too, otherwise the force parts).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SolidTotals {
+    flux: CompensatedSum3,
+    moment: CompensatedSum3,
+    gradient_moment: CompensatedSum3,
+    energy: CompensatedSum,
+    acceleration_flux: CompensatedSum3,
+}
+
+impl SolidTotals {
+    pub(crate) fn new() -> Self {
+        Self {
+            flux: CompensatedSum3::new(),
+            moment: CompensatedSum3::new(),
+            gradient_moment: CompensatedSum3::new(),
+            energy: CompensatedSum::new(),
+            acceleration_flux: CompensatedSum3::new(),
+        }
+    }
+
+    /// Adds one block's plain sums.
+    #[inline(always)]
+    pub(crate) fn add<const FULL: bool>(&mut self, block: &SolidBlock) {
+        self.flux.add(&block.flux);
+        if FULL {
+            self.moment.add(&block.moment);
+            self.gradient_moment.add(&block.gradient_moment);
+            self.energy.add(block.energy);
+        }
+        self.acceleration_flux.add(&block.acceleration_flux);
+    }
+
+    /// The sums, with the magnitudes gathered along the loop.
+    pub(crate) fn finish(&self, sizes: &SolidMagnitudes) -> SolidSums {
+        sizes.sums(
+            self.flux.value(),
+            self.moment.value(),
+            self.gradient_moment.value(),
+            self.energy.value(),
+            self.acceleration_flux.value(),
+        )
+    }
+}
+
 /// The running sizes of the solid integrand's terms (the rounding bounds of [`SolidSums`]).
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct SolidMagnitudes {
@@ -451,11 +497,7 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized, const FAR: bool, const FUL
     source: &P,
     map: &FrameMap,
 ) -> SolidSums {
-    let mut flux = CompensatedSum3::new();
-    let mut moment = CompensatedSum3::new();
-    let mut gradient_moment = CompensatedSum3::new();
-    let mut energy = CompensatedSum::new();
-    let mut acceleration_flux = CompensatedSum3::new();
+    let mut totals = SolidTotals::new();
     let mut sizes = SolidMagnitudes::default();
     let reference = source.potential(&map.apply(&table.nodes.origin()));
     for ((block_points, block_weights), block_constants) in table
@@ -474,21 +516,9 @@ pub(crate) fn solid_table_sums<P: Potential + ?Sized, const FAR: bool, const FUL
         for ((w, k), field) in block_weights.iter().zip(block_constants).zip(&fields) {
             add_solid_node::<FAR, FULL>(&mut block, &mut sizes, field, map, w, k, reference);
         }
-        flux.add(&block.flux);
-        if FULL {
-            moment.add(&block.moment);
-            gradient_moment.add(&block.gradient_moment);
-            energy.add(block.energy);
-        }
-        acceleration_flux.add(&block.acceleration_flux);
+        totals.add::<FULL>(&block);
     }
-    sizes.sums(
-        flux.value(),
-        moment.value(),
-        gradient_moment.value(),
-        energy.value(),
-        acceleration_flux.value(),
-    )
+    totals.finish(&sizes)
 }
 
 /// Force, torque (both forms) and energy of a homogeneous solid of density `density` whose

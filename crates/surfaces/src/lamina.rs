@@ -172,11 +172,13 @@ impl Lamina {
         out.area_points.clear();
         out.area_weights.clear();
         for &(s, weight_s) in radial {
-            for &(cos, sin, weight_phi) in angles {
-                out.area_points.push(Vec3::new(s * cos, s * sin, 0.0));
-                out.area_weights.push(weight_phi * weight_s * s);
-            }
+            push_row(out, s, weight_s, angles);
         }
+        self.fill_rim(rim, out);
+    }
+
+    /// The rim nodes, centre and normal of a table being rebuilt.
+    fn fill_rim(&self, rim: &[(Real, Real, Real)], out: &mut LaminaNodes) {
         out.rim_points.clear();
         out.rim_weighted_normals.clear();
         for &(cos, sin, weight) in rim {
@@ -187,6 +189,14 @@ impl Lamina {
         }
         out.centre = Vec3::zeros();
         out.normal = Vec3::z();
+    }
+}
+
+/// The area nodes of radius `s` (radial weight `weight_s`) at `angles`, appended to `out`.
+fn push_row(out: &mut LaminaNodes, s: Real, weight_s: Real, angles: &[(Real, Real, Real)]) {
+    for &(cos, sin, weight_phi) in angles {
+        out.area_points.push(Vec3::new(s * cos, s * sin, 0.0));
+        out.area_weights.push(weight_phi * weight_s * s);
     }
 }
 
@@ -205,22 +215,9 @@ impl Lamina {
         out.area_points.clear();
         out.area_weights.clear();
         for (s, weight_s, range) in rows {
-            let (s, weight_s) = (*s, *weight_s);
-            for &(cos, sin, weight_phi) in angles.get(range.clone()).unwrap_or(&[]) {
-                out.area_points.push(Vec3::new(s * cos, s * sin, 0.0));
-                out.area_weights.push(weight_phi * weight_s * s);
-            }
+            push_row(out, *s, *weight_s, angles.get(range.clone()).unwrap_or(&[]));
         }
-        out.rim_points.clear();
-        out.rim_weighted_normals.clear();
-        for &(cos, sin, weight) in rim {
-            let outward = Vec3::new(cos, sin, 0.0);
-            out.rim_points.push(outward * self.radius);
-            out.rim_weighted_normals
-                .push(outward * (weight * self.radius));
-        }
-        out.centre = Vec3::zeros();
-        out.normal = Vec3::z();
+        self.fill_rim(rim, out);
     }
 }
 
