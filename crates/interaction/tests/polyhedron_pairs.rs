@@ -295,32 +295,41 @@ fn estimates_bound_the_true_error() {
 
 const G: f64 = 6.67408e-11;
 
-/// The Didymos standard pair at 1e-10: integrated over the ellipsoid (its partner's field is
-/// the expansion, far cheaper than the mesh's 1,996 faces × 10,000+ nodes in the ellipsoid's
-/// field), within its estimate of the reference over the mesh at 1e-13, V_AB = V_BA.
-#[test]
-fn didymos_standard_pair_at_1e_10() {
+/// The Didymos standard system's density: the published 2103.98576788771879 kg/m³.
+const DIDYMOS_DENSITY: f64 = 2_103.985_767_887_719;
+
+/// The Didymos radar primary (1,996 faces, metres, SI).
+fn didymos_primary() -> Polyhedron {
     let mesh = Mesh::read_vertex_facet_csv(
         shapes().join("Didymos_A_vert_met.csv"),
         shapes().join("Didymos_A_facet.csv"),
         LengthUnit::Metres,
     )
     .unwrap();
-    let density = 2_103.985_767_887_719;
-    let primary = Body::polyhedron(
-        Polyhedron::with_density(&mesh, density)
+    Polyhedron::with_density(&mesh, DIDYMOS_DENSITY)
+        .unwrap()
+        .with_gravitational_constant(G)
+        .unwrap()
+}
+
+/// The standard system's triaxial secondary (semi-axes in metres, the same density).
+fn didymos_secondary() -> Body {
+    Body::ellipsoid(
+        Ellipsoid::with_density(103.6778, 79.7526, 66.4605, DIDYMOS_DENSITY)
             .unwrap()
             .with_gravitational_constant(G)
             .unwrap(),
     )
-    .unwrap();
-    let secondary = Body::ellipsoid(
-        Ellipsoid::with_density(103.6778, 79.7526, 66.4605, density)
-            .unwrap()
-            .with_gravitational_constant(G)
-            .unwrap(),
-    )
-    .unwrap();
+    .unwrap()
+}
+
+/// The Didymos standard pair at 1e-10: integrated over the ellipsoid (its partner's field is
+/// the expansion, far cheaper than the mesh's 1,996 faces × 10,000+ nodes in the ellipsoid's
+/// field), within its estimate of the reference over the mesh at 1e-13, V_AB = V_BA.
+#[test]
+fn didymos_standard_pair_at_1e_10() {
+    let primary = Body::polyhedron(didymos_primary()).unwrap();
+    let secondary = didymos_secondary();
     let pa = Pose::identity();
     let pb = Pose::new(Vec3::new(1180.0, 0.0, 0.0), Vec3::zeros());
     let r = engine(1e-10, SurfaceChoice::Automatic)
@@ -353,30 +362,14 @@ fn didymos_standard_pair_at_1e_10() {
 /// to 5.2e-11): 126,979 evaluations, 188,919 before (levels 4 and 5).
 #[test]
 fn didymos_near_contact_integrates_over_the_mesh() {
-    let mesh = Mesh::read_vertex_facet_csv(
-        shapes().join("Didymos_A_vert_met.csv"),
-        shapes().join("Didymos_A_facet.csv"),
-        LengthUnit::Metres,
-    )
-    .unwrap();
-    let density = 2_103.985_767_887_719;
-    let polyhedron = Polyhedron::with_density(&mesh, density)
-        .unwrap()
-        .with_gravitational_constant(G)
-        .unwrap();
+    let polyhedron = didymos_primary();
     let max_x = polyhedron
         .vertices()
         .iter()
         .map(|v| v.x)
         .fold(f64::NEG_INFINITY, f64::max);
     let primary = Body::polyhedron(polyhedron).unwrap();
-    let secondary = Body::ellipsoid(
-        Ellipsoid::with_density(103.6778, 79.7526, 66.4605, density)
-            .unwrap()
-            .with_gravitational_constant(G)
-            .unwrap(),
-    )
-    .unwrap();
+    let secondary = didymos_secondary();
     let pa = Pose::identity();
     let pb = Pose::new(Vec3::new(max_x + 103.6778 * 1.05, 0.0, 0.0), Vec3::zeros());
     let r = engine(1e-10, SurfaceChoice::Automatic)
