@@ -189,33 +189,22 @@ pub(crate) fn solid_sums<P: Potential + ?Sized>(
     source: &P,
     map: &FrameMap,
 ) -> SolidSums {
-    let mut flux = CompensatedSum3::new();
-    let mut moment = CompensatedSum3::new();
-    let mut gradient_moment = CompensatedSum3::new();
-    let mut energy = CompensatedSum::new();
+    let mut totals = SolidTotals::new();
     let mut sizes = SolidMagnitudes::default();
     // ∮ dS = 0 and ∮ x × dS = 0: the potential at the centroid can be taken out of the force
     // and torque sums, whose terms then shrink by the ratio of size to distance.
     let reference = source.potential(&map.apply(origin));
     for (block_points, block_weights) in points.chunks(BLOCK).zip(area_vectors.chunks(BLOCK)) {
         let mut block = SolidBlock::default();
-        for (r, w) in block_points.iter().zip(block_weights) {
-            let field = source.field(&map.apply(r));
+        let fields = block_fields::<P, true>(block_points, source, map);
+        for ((r, w), field) in block_points.iter().zip(block_weights).zip(&fields) {
             let k = NodeConstants::new(r - origin, w);
-            add_solid_node::<false, true>(&mut block, &mut sizes, &field, map, w, &k, reference);
+            add_solid_node::<false, true>(&mut block, &mut sizes, field, map, w, &k, reference);
         }
-        flux.add(&block.flux);
-        moment.add(&block.moment);
-        gradient_moment.add(&block.gradient_moment);
-        energy.add(block.energy);
+        // Without `FAR` the block's acceleration flux stays zero, and so does its total.
+        totals.add::<true>(&block);
     }
-    sizes.sums(
-        flux.value(),
-        moment.value(),
-        gradient_moment.value(),
-        energy.value(),
-        Vec3::zeros(),
-    )
+    totals.finish(&sizes)
 }
 
 /// What a solid node's terms need besides the field, the point and the weighted area vector
