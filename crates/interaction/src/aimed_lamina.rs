@@ -427,10 +427,27 @@ impl LaminaWorkspace {
                 radial.push((s, w * dt));
             }
         }
+        // A radius's angular side is one of the aim's few tabulated sides, so rows share
+        // their angles: each distinct side's list is built once (the same nodes, computed
+        // once instead of once per row). Kept on the stack: a warm evaluation allocates
+        // nothing.
+        let mut built = [(aim.angle, 0, 0); ANGLE_TABLE];
+        let mut distinct = 0;
         for &(s, weight) in &radial {
-            let first = angles.len();
-            both_halves(self, &aim.angle_at(s), aim.angle_centre, &mut angles)?;
-            rows.push((s, weight, first..angles.len()));
+            let side = aim.angle_at(s);
+            let range = match built[..distinct].iter().rev().find(|(b, ..)| *b == side) {
+                Some(&(_, first, end)) => first..end,
+                None => {
+                    let first = angles.len();
+                    both_halves(self, &side, aim.angle_centre, &mut angles)?;
+                    if distinct < ANGLE_TABLE {
+                        built[distinct] = (side, first, angles.len());
+                        distinct += 1;
+                    }
+                    first..angles.len()
+                }
+            };
+            rows.push((s, weight, range));
         }
         match Arc::get_mut(&mut self.nodes) {
             Some(nodes) => lamina.fill_rows(&angles, &rows, &rim, nodes),
