@@ -107,8 +107,51 @@ fn bench_ellipsoid_fields_into(c: &mut Criterion) {
     group.finish();
 }
 
+/// The disk's batched `fields_into` (the elliptic integrals of four points iterated side by
+/// side) against the point-by-point loop, ns per point over 256 points: another disk's face
+/// 0.05 to 0.5 radii above this one and tilted by 0.6 rad (the nodes of a disk–disk pair near
+/// contact: near field, rim and axis included), and the `bench_batch` points (1.05 to 4
+/// radii, near and far field mixed).
+fn bench_disk_fields_into(c: &mut Criterion) {
+    let disk = UniformDisk::new(1.0, 1.0).unwrap();
+    let (sin, cos) = 0.6f64.sin_cos();
+    let face: Vec<Vec3> = (0..256)
+        .map(|k| {
+            let t = (k as f64 + 0.5) / 256.0;
+            let s = t.sqrt();
+            let phi = 2.0 * std::f64::consts::PI * (k as f64 * 0.618_033_988_749_895).fract();
+            let (x, y) = (s * phi.cos(), s * phi.sin());
+            Vec3::new(0.3 + x * cos, y, 0.05 + 0.45 * t + x * sin)
+        })
+        .collect();
+    let spread: Vec<Vec3> = (0..256)
+        .map(|k| {
+            let t = k as f64 / 256.0;
+            let dir = Vec3::new((7.0 * t).cos(), (7.0 * t).sin(), 2.0 * t - 1.0).normalize();
+            dir * (1.05 + 3.0 * t)
+        })
+        .collect();
+    let mut group = c.benchmark_group("batch_of_256");
+    group.throughput(Throughput::Elements(256));
+    for (label, points) in [("disk_face", &face), ("disk_spread", &spread)] {
+        let mut out = vec![disk.field(&points[0]); points.len()];
+        group.bench_function(format!("{label}_point_by_point"), |bench| {
+            bench.iter(|| {
+                for (slot, r) in out.iter_mut().zip(black_box(points)) {
+                    *slot = black_box(&disk).field(r);
+                }
+            })
+        });
+        group.bench_function(format!("{label}_fields_into"), |bench| {
+            bench.iter(|| black_box(&disk).fields_into(black_box(points), &mut out))
+        });
+    }
+    group.finish();
+}
+
 fn potentials(c: &mut Criterion) {
     bench_ellipsoid_fields_into(c);
+    bench_disk_fields_into(c);
     bench_batch(c, "sphere", &Sphere::new(1.0, 1.0).unwrap(), 1.0);
     bench_batch(
         c,

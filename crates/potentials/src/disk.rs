@@ -88,8 +88,9 @@
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
-use crate::elliptic::gauss;
+use crate::elliptic::{gauss, gauss_lanes, Gauss};
 use crate::error::{positive, representable};
+use crate::lanes::{F4, LANES, M4};
 use crate::{BodyError, Field, Potential, Real, Region, Vec3};
 use surfgrav_quadrature::two_sum;
 
@@ -184,7 +185,16 @@ impl UniformDisk {
     }
 
     /// The closed form, for points within `FAR_FIELD_RADII` radii.
+    #[inline]
     fn near_field(&self, p: &Vec3, rho: Real) -> Field {
+        let near = self.near_point(p, rho);
+        let g = gauss(near.kc, near.use_pi_track.then_some(near.snc));
+        self.near_finish(&near, &g)
+    }
+
+    /// The closed form's quantities before the elliptic integrals.
+    #[inline(always)]
+    fn near_point(&self, p: &Vec3, rho: Real) -> NearPoint {
         let r = self.radius;
         let (xn, yn, zn) = (p.x / r, p.y / r, p.z / r);
         let rho_n = rho / r;
@@ -207,7 +217,43 @@ impl UniformDisk {
         let needs_pi = az > 0.0 && delta != 0.0;
         // Below 1e-20 k_c, P equals its limit π/(2 k_c) to double precision.
         let use_pi_track = needs_pi && snc > 1e-20 * kc;
-        let g = gauss(kc, use_pi_track.then_some(snc));
+        NearPoint {
+            xn,
+            yn,
+            z: p.z,
+            rho_n,
+            delta,
+            az,
+            z2,
+            s_plus,
+            on_rim,
+            kc,
+            signed_snc,
+            snc,
+            needs_pi,
+            use_pi_track,
+        }
+    }
+
+    /// The closed form from the point's quantities and its elliptic integrals.
+    #[inline(always)]
+    fn near_finish(&self, near: &NearPoint, g: &Gauss) -> Field {
+        let NearPoint {
+            xn,
+            yn,
+            z,
+            rho_n,
+            delta,
+            az,
+            z2,
+            s_plus,
+            on_rim,
+            kc,
+            signed_snc,
+            needs_pi,
+            use_pi_track,
+            ..
+        } = *near;
         let p_scaled = if !needs_pi {
             0.0
         } else if use_pi_track {
@@ -233,9 +279,9 @@ impl UniformDisk {
         let v = 2.0 * bracket - 2.0 * PI * az * step;
         let omega = 2.0 * PI * step - 2.0 * az / s_plus * (g.k + signed_p);
         let radial_over_rho = -16.0 * g.c / (s_plus * s_plus * s_plus);
-        let side = if p.z > 0.0 {
+        let side = if z > 0.0 {
             1.0
-        } else if p.z < 0.0 {
+        } else if z < 0.0 {
             -1.0
         } else {
             0.0
@@ -263,6 +309,74 @@ impl UniformDisk {
                 -self.g_sigma * side * omega,
             ),
         }
+    }
+
+    /// The fields at `points` into `out`: [`LANES`] points at a time, whose elliptic integrals
+    /// ([`gauss_lanes`]) iterate side by side; each result bit for bit [`Potential::field`]'s.
+    #[inline(always)]
+    fn batch<T>(&self, points: &[Vec3], out: &mut [T], pick: impl Fn(Field) -> T) {
+        let n = points.len().min(out.len());
+        let (points, out) = (&points[..n], &mut out[..n]);
+        for (chunk, target) in points.chunks(LANES).zip(out.chunks_mut(LANES)) {
+            let mut near = [None; LANES];
+            for (l, r) in chunk.iter().enumerate() {
+                let rho = hypot(r.x, r.y);
+                let dist = hypot(rho, r.z);
+                if dist >= FAR_FIELD_RADII * self.radius {
+                    target[l] = pick(self.far_field(r, dist));
+                } else {
+                    near[l] = Some(self.near_point(r, rho));
+                }
+            }
+            if near.iter().all(Option::is_none) {
+                continue;
+            }
+            let lane = |f: fn(&NearPoint) -> Real| {
+                F4(std::array::from_fn(|l| near[l].as_ref().map_or(1.0, f)))
+            };
+            let want_pi = M4::from_flags(std::array::from_fn(|l| {
+                near[l].as_ref().is_some_and(|p| p.use_pi_track)
+            }));
+            let g = gauss_lanes(lane(|p| p.kc), lane(|p| p.snc), want_pi);
+            for (l, point) in near.iter().enumerate() {
+                if let Some(point) = point {
+                    target[l] = pick(self.near_finish(point, &g[l]));
+                }
+            }
+        }
+    }
+
+    /// [`UniformDisk::batch`] compiled without extra target features.
+    fn fields_plain(&self, points: &[Vec3], out: &mut [Field]) {
+        self.batch(points, out, |f| f);
+    }
+
+    /// [`UniformDisk::fields_plain`] for potentials only.
+    fn potentials_plain(&self, points: &[Vec3], out: &mut [Real]) {
+        self.batch(points, out, |f| f.potential);
+    }
+
+    /// [`UniformDisk::batch`] compiled with AVX (four lanes per register; no FMA, so every
+    /// operation rounds as in the scalar code).
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn fields_avx(&self, points: &[Vec3], out: &mut [Field]) {
+        self.batch(points, out, |f| f);
+    }
+
+    /// [`UniformDisk::fields_avx`] for potentials only.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn potentials_avx(&self, points: &[Vec3], out: &mut [Real]) {
+        self.batch(points, out, |f| f.potential);
     }
 
     /// The exterior Legendre series, for points at `dist` ≥ `FAR_FIELD_RADII` radii.
@@ -310,6 +424,28 @@ impl UniformDisk {
     }
 }
 
+/// A near-field point's quantities before its elliptic integrals (see
+/// [`UniformDisk::near_point`]): scaled coordinates, the rim offset $\delta = \rho - 1$,
+/// $|z|$, $z^2$, $S\_+$, whether the point is on the rim, $k_c$, $\mathrm{sgn}(1-\rho)\sqrt{1-n}$
+/// and its size, and whether $\Pi$ is needed and iterated.
+#[derive(Debug, Clone, Copy)]
+struct NearPoint {
+    xn: Real,
+    yn: Real,
+    z: Real,
+    rho_n: Real,
+    delta: Real,
+    az: Real,
+    z2: Real,
+    s_plus: Real,
+    on_rim: bool,
+    kc: Real,
+    signed_snc: Real,
+    snc: Real,
+    needs_pi: bool,
+    use_pi_track: bool,
+}
+
 impl Potential for UniformDisk {
     fn as_typed(&self) -> crate::TypedPotential<'_> {
         crate::TypedPotential::Disk(self)
@@ -343,6 +479,29 @@ impl Potential for UniformDisk {
         } else {
             Region::Outside
         }
+    }
+
+    /// Four points at a time, the elliptic integrals of the near ones iterated side by side
+    /// (AVX where the CPU has it), each result bit for bit [`Potential::field`]'s.
+    fn fields_into(&self, points: &[Vec3], out: &mut [Field]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: AVX was just detected on this CPU (std caches the answer).
+            unsafe { self.fields_avx(points, out) };
+            return;
+        }
+        self.fields_plain(points, out);
+    }
+
+    /// As [`Potential::fields_into`], keeping the potentials.
+    fn potentials_into(&self, points: &[Vec3], out: &mut [Real]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: AVX was just detected on this CPU (std caches the answer).
+            unsafe { self.potentials_avx(points, out) };
+            return;
+        }
+        self.potentials_plain(points, out);
     }
 
     fn field(&self, r: &Vec3) -> Field {
@@ -452,6 +611,97 @@ fn two_product(a: Real, b: Real) -> (Real, Real) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Points for the batched field: near the rim (offsets from 1e-16 to 0.3 radii inside and
+    /// outside, heights from 0 to 1e-10 and 0.5 radii, both sides), on the axis, in the plane
+    /// inside and outside, on the lamina, exactly on the rim, at the far-field switch and
+    /// beyond it, far away, and non-finite points; shuffled so that each group of four
+    /// mixes near, far and special lanes.
+    fn batch_points(radius: f64) -> Vec<Vec3> {
+        let mut points = Vec::new();
+        let mut state = 3u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for offset in [0.0, 1e-16, 1e-12, 1e-8, 1e-4, 1e-2, 0.3] {
+            for sign in [-1.0, 1.0] {
+                for height in [0.0, 1e-300, 1e-10, 1e-3, 0.5, -0.5, -1e-10] {
+                    let phi = std::f64::consts::TAU * next();
+                    let s = radius * (1.0 + sign * offset);
+                    points.push(Vec3::new(s * phi.cos(), s * phi.sin(), height * radius));
+                }
+            }
+        }
+        for z in [0.0, 1e-12, 0.3, 1.0, 1.99, 2.0, 5.0, -0.7] {
+            points.push(Vec3::new(0.0, 0.0, z * radius));
+        }
+        for s in [0.0, 0.2, 0.7, 0.999, 1.3, 1.99, 2.0, 2.5, 10.0] {
+            points.push(Vec3::new(0.6 * s * radius, -0.8 * s * radius, 0.0));
+        }
+        points.push(Vec3::new(radius, 0.0, 0.0));
+        points.push(Vec3::new(0.0, -radius, 0.0));
+        for _ in 0..400 {
+            // Spread over 0.01 to 30 radii, in every direction.
+            let r = radius * 10f64.powf(-2.0 + 3.5 * next());
+            let z = 2.0 * next() - 1.0;
+            let phi = std::f64::consts::TAU * next();
+            let s = (1.0 - z * z).sqrt();
+            points.push(Vec3::new(s * phi.cos(), s * phi.sin(), z) * r);
+        }
+        points.push(Vec3::new(1e8, -3e7, 2e7) * radius);
+        points.push(Vec3::new(f64::NAN, 0.1, 0.2));
+        points.push(Vec3::new(0.3, f64::INFINITY, 0.0));
+        points.push(Vec3::new(0.3, 0.2, f64::NEG_INFINITY));
+        for k in (1..points.len()).rev() {
+            let j = (next() * (k + 1) as f64) as usize;
+            points.swap(k, j.min(k));
+        }
+        points
+    }
+
+    fn same(a: f64, b: f64) -> bool {
+        a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+    }
+
+    /// The batched field (both compilations) is the point-by-point field bit for bit, at every
+    /// batch length (so every position in a group of four and every remainder).
+    #[test]
+    fn batched_field_is_the_scalar_field_bit_for_bit() {
+        for radius in [1.0, 3.7e3] {
+            let disk = UniformDisk::new(radius, 2.5).unwrap();
+            let points = batch_points(radius);
+            let want: Vec<Field> = points.iter().map(|r| disk.field(r)).collect();
+            for start in 0..4 {
+                let points = &points[start..];
+                let want = &want[start..];
+                let blank = Field {
+                    potential: 0.0,
+                    acceleration: Vec3::zeros(),
+                };
+                let mut runs = Vec::new();
+                let mut out = vec![blank; points.len()];
+                disk.fields_into(points, &mut out);
+                runs.push(("fields_into", out.clone()));
+                disk.fields_plain(points, &mut out);
+                runs.push(("fields_plain", out.clone()));
+                let mut potentials = vec![0.0; points.len()];
+                disk.potentials_into(points, &mut potentials);
+                for (name, got) in &runs {
+                    for ((r, g), w) in points.iter().zip(got).zip(want) {
+                        let equal = same(g.potential, w.potential)
+                            && (0..3).all(|i| same(g.acceleration[i], w.acceleration[i]));
+                        assert!(equal, "{name} at {r:?}: {g:?} vs {w:?}");
+                    }
+                }
+                for ((r, &g), w) in points.iter().zip(&potentials).zip(want) {
+                    assert!(same(g, w.potential), "potentials_into at {r:?}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn series_coefficients_are_the_binomial_ones() {

@@ -58,6 +58,7 @@
 //! $\Pi$ diverges as $(1 - n)^{-1/2}$ when $n \to 1$; [`complete_pi_scaled`] returns
 //! $\sqrt{1-n}\\,\Pi(n, m)$, finite there, with the limit $\pi / (2 k_c)$ at $n = 1$.
 
+use crate::lanes::{F4, LANES, M4};
 use std::f64::consts::FRAC_PI_2;
 
 use thiserror::Error;
@@ -323,6 +324,88 @@ pub(crate) fn gauss(kc: f64, sqrt_one_minus_n: Option<f64>) -> Gauss {
         d_minus_c: scale_mu * d_minus_c.numerator(m_mu),
         pi_scaled,
     }
+}
+
+/// [`gauss`] for [`LANES`] moduli side by side: lane $l$ is bit for bit
+/// `gauss(kc[l], want_pi[l].then_some(sqrt_one_minus_n[l]))` (the same operations in the same
+/// order; a lane that has converged is frozen while the others iterate, and the $\Pi$ track
+/// of a lane that does not want it is computed and discarded). Same domain as [`gauss`] for
+/// the lanes whose results are used.
+#[inline(always)]
+pub(crate) fn gauss_lanes(kc: F4, sqrt_one_minus_n: F4, want_pi: M4) -> [Gauss; LANES] {
+    let one = F4::splat(1.0);
+    let zero = F4::splat(0.0);
+    let mut mu = one;
+    let mut nu = kc;
+    let (mut b_alpha, mut b_beta) = (zero, one);
+    let (mut d_alpha, mut d_beta) = (one, zero);
+    let (mut c_alpha, mut c_beta) = (F4::splat(0.25), zero);
+    let (mut dc_alpha, mut dc_beta) = (kc * 0.25, F4::splat(0.5));
+    let snc = want_pi.select(sqrt_one_minus_n, one);
+    let (mut p_alpha, mut p_beta) = (snc, snc);
+    let mut w = snc * snc;
+    let mut active = M4::from_flags([true; LANES]);
+    let mut steps = 0;
+    loop {
+        let q = mu * nu;
+        let mu2 = mu * mu;
+        let inv_mu = 1.0 / mu;
+        let h = 0.25 * (mu + nu) * inv_mu;
+        let half_inv_mu2 = 0.5 * inv_mu * inv_mu;
+        // Track::step_at_mu, lane by lane, kept where the lane is still iterating.
+        let step = |alpha: &mut F4, beta: &mut F4| {
+            let new_alpha = h * (*alpha + *beta * q);
+            let new_beta = half_inv_mu2 * (*alpha + *beta * mu2);
+            *alpha = active.select(new_alpha, *alpha);
+            *beta = active.select(new_beta, *beta);
+        };
+        step(&mut b_alpha, &mut b_beta);
+        step(&mut d_alpha, &mut d_beta);
+        if steps > 0 {
+            step(&mut c_alpha, &mut c_beta);
+            step(&mut dc_alpha, &mut dc_beta);
+        }
+        let pi_active = active.and(want_pi);
+        let quarter_inv_w = 0.25 / w;
+        let wq = w + q;
+        let alpha = wq * (p_alpha + p_beta * q) * quarter_inv_w;
+        let beta = 2.0 * (p_alpha + p_beta * w) * quarter_inv_w;
+        p_alpha = pi_active.select(alpha, p_alpha);
+        p_beta = pi_active.select(beta, p_beta);
+        w = pi_active.select(wq * wq * quarter_inv_w, w);
+        mu = active.select(0.5 * (mu + nu), mu);
+        nu = active.select(q.sqrt(), nu);
+        steps += 1;
+        let converged = (mu - nu).abs().le(mu * AGM_TOLERANCE);
+        if steps >= MAX_STEPS {
+            break;
+        }
+        active = active.and(converged.not());
+        if !active.any() {
+            break;
+        }
+    }
+    let m = 0.5 * (mu + nu);
+    let scale_mu = std::f64::consts::PI / (2.0 * mu * m * (m + mu));
+    let m_mu = m * mu;
+    let sw = w.sqrt();
+    let pi_scaled = want_pi.select(
+        std::f64::consts::PI * (p_alpha + p_beta * (m * sw)) / (2.0 * sw * m * (m + sw)),
+        zero,
+    );
+    let k = FRAC_PI_2 / m;
+    let b = scale_mu * (b_alpha + b_beta * m_mu);
+    let d = scale_mu * (d_alpha + d_beta * m_mu);
+    let c = scale_mu * (c_alpha + c_beta * m_mu);
+    let d_minus_c = scale_mu * (dc_alpha + dc_beta * m_mu);
+    std::array::from_fn(|l| Gauss {
+        k: k.0[l],
+        b: b.0[l],
+        d: d.0[l],
+        c: c.0[l],
+        d_minus_c: d_minus_c.0[l],
+        pi_scaled: pi_scaled.0[l],
+    })
 }
 
 #[cfg(test)]
