@@ -149,9 +149,54 @@ fn bench_disk_fields_into(c: &mut Criterion) {
     group.finish();
 }
 
+/// The spheroid's batched `fields_into` against the point-by-point loop, ns per point over
+/// 256 points: the `bench_batch` points and points 0.1 to 1 body sizes above the surface, for
+/// the paper's oblate spheroid (c/a = 0.25) and a prolate one (a/c = 0.25).
+fn bench_spheroid_fields_into(c: &mut Criterion) {
+    let mut group = c.benchmark_group("batch_of_256");
+    group.throughput(Throughput::Elements(256));
+    for (label, a, cc) in [
+        ("spheroid_oblate", 1.0, 0.25),
+        ("spheroid_prolate", 0.25, 1.0),
+    ] {
+        let body = Spheroid::new(a, cc, 1.0).unwrap();
+        let spread: Vec<Vec3> = (0..256)
+            .map(|k| {
+                let t = k as f64 / 256.0;
+                let dir = Vec3::new((7.0 * t).cos(), (7.0 * t).sin(), 2.0 * t - 1.0).normalize();
+                dir * (1.05 + 3.0 * t)
+            })
+            .collect();
+        let near: Vec<Vec3> = (0..256)
+            .map(|k| {
+                let t = k as f64 / 256.0;
+                let dir = Vec3::new((11.0 * t).cos(), (11.0 * t).sin(), 2.0 * t - 1.0).normalize();
+                let surface =
+                    1.0 / ((dir.x / a).powi(2) + (dir.y / a).powi(2) + (dir.z / cc).powi(2)).sqrt();
+                dir * (surface + 0.1 + 0.9 * ((17.0 * t).fract()))
+            })
+            .collect();
+        for (kind, points) in [("spread", &spread), ("near", &near)] {
+            let mut out = vec![body.field(&points[0]); points.len()];
+            group.bench_function(format!("{label}_{kind}_point_by_point"), |bench| {
+                bench.iter(|| {
+                    for (slot, r) in out.iter_mut().zip(black_box(points)) {
+                        *slot = black_box(&body).field(r);
+                    }
+                })
+            });
+            group.bench_function(format!("{label}_{kind}_fields_into"), |bench| {
+                bench.iter(|| black_box(&body).fields_into(black_box(points), &mut out))
+            });
+        }
+    }
+    group.finish();
+}
+
 fn potentials(c: &mut Criterion) {
     bench_ellipsoid_fields_into(c);
     bench_disk_fields_into(c);
+    bench_spheroid_fields_into(c);
     bench_batch(c, "sphere", &Sphere::new(1.0, 1.0).unwrap(), 1.0);
     bench_batch(
         c,

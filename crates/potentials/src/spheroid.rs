@@ -69,6 +69,7 @@ use crate::ellipsoid::{
     beyond_far_field, exact, excess_of, nearest_power_of_two, region_of_excess,
 };
 use crate::error::{positive, representable, BodyError};
+use crate::lanes::{F4, LANES, M4};
 use crate::point_mass::kepler_field;
 use crate::{Field, Potential, Real, Region, Vec3};
 
@@ -434,6 +435,220 @@ fn estrin32(x: Real) -> Real {
     estrin16(x, &SERIES[..16]) + estrin16(x, &SERIES[16..]) * x16
 }
 
+impl Spheroid {
+    /// The fields at [`LANES`] points side by side, each bit for bit [`Potential::field`]'s
+    /// where the lane took the lane path, and which lanes did (the others' entries are
+    /// meaningless): a lane outside the body and within the far-field limit takes it; the
+    /// confocal parameter and the shape functions run the scalar operations lane by lane (each
+    /// branch of the shape functions only when a lane needs it, and selected per lane).
+    #[inline(always)]
+    fn field_lanes(&self, points: [Vec3; LANES]) -> ([Field; LANES], [bool; LANES]) {
+        let s = &self.scaled;
+        let coordinate = |i: usize| F4(std::array::from_fn(|l| points[l][i] * s.inv_scale));
+        let (px, py, pz) = (coordinate(0), coordinate(1), coordinate(2));
+        let rho2 = px * px + py * py;
+        let z2 = pz * pz;
+        let r2 = rho2 + z2;
+        let far = M4::from_flags(std::array::from_fn(|l| beyond_far_field(r2.0[l])));
+        let inside = (rho2 * s.inv_a2 + z2 * s.inv_c2).lt(F4::splat(1.0 - 1e-9));
+        let zero = F4::splat(0.0);
+        let (big_a, big_c, outside) = if s.d >= 0.0 {
+            let mut rho2_minus_a2 = rho2 - s.a2;
+            let cancels = rho2_minus_a2.abs().lt(F4::splat(0.5 * s.a2));
+            if cancels.any() {
+                let (x2, x2_err) = exact::lanes::square(px);
+                let (y2, y2_err) = exact::lanes::square(py);
+                let (sum, sum_err) = exact::lanes::sum(x2, y2);
+                let exact = (sum - s.a2) + (((sum_err + x2_err) + y2_err) - s.a2_err);
+                rho2_minus_a2 = cancels.select(exact, rho2_minus_a2);
+            }
+            let sigma = rho2_minus_a2 + (z2 + s.c2);
+            let t = 4.0 * z2 * s.d;
+            let root = (sigma * sigma + t).sqrt();
+            let c_big = zero
+                .le(sigma)
+                .select(0.5 * (sigma + root), t / (2.0 * (root - sigma)));
+            (c_big + s.d, c_big, c_big.gt(F4::splat(s.c2)))
+        } else {
+            let e = -s.d;
+            let z2_minus_c2 = (pz - s.c) * (pz + s.c);
+            let sigma = (rho2 + s.a2) + z2_minus_c2;
+            let t = 4.0 * rho2 * e;
+            let root = (sigma * sigma + t).sqrt();
+            let a_big = zero
+                .le(sigma)
+                .select(0.5 * (sigma + root), t / (2.0 * (root - sigma)));
+            (a_big, a_big + e, a_big.gt(F4::splat(s.a2)))
+        };
+        let taken = outside.and(far.not()).and(inside.not()).flags();
+        let sqrt_c = big_c.sqrt();
+        let sqrt_a = big_a.sqrt();
+        let inv_sqrt_c = 1.0 / sqrt_c;
+        let inv_sum = 1.0 / (sqrt_a + sqrt_c);
+        let inv_a = 1.0 / big_a;
+        let inv_c = inv_sqrt_c * inv_sqrt_c;
+        let q = s.d * inv_c;
+        let c_over_a = big_c * inv_a;
+        let a_over_c = big_a * inv_c;
+        // ScaledSpheroid::shape_functions, branch by branch.
+        let series = q.abs().le(F4::splat(PLAIN_SERIES_Q));
+        let half = series
+            .not()
+            .and(F4::splat(HALF_ANGLE_Q_MIN).le(q))
+            .and(q.le(F4::splat(HALF_ANGLE_Q_MAX)));
+        let closed = series.not().and(half.not());
+        let (mut h, mut m, mut g_minus_h) = (zero, zero, zero);
+        if series.any() {
+            let hs = estrin16_lanes(-q, &SERIES[..9]);
+            let g = 1.0 - q * hs;
+            h = series.select(hs, h);
+            m = series.select(c_over_a - hs, m);
+            g_minus_h = series.select(g - hs, g_minus_h);
+        }
+        if half.any() {
+            let w = 2.0 * sqrt_c * inv_sum;
+            let nu = s.d * inv_sum * inv_sum;
+            let minus_nu = -nu;
+            let small = nu.abs().lt(F4::splat(0.05));
+            let mut series_nu = zero;
+            if small.any() {
+                series_nu = small.select(estrin16_lanes(minus_nu, &SERIES[..16]), series_nu);
+            }
+            if small.not().any() {
+                let x2 = minus_nu * minus_nu;
+                let x4 = x2 * x2;
+                let x8 = x4 * x4;
+                let x16 = x8 * x8;
+                let long = estrin16_lanes(minus_nu, &SERIES[..16])
+                    + estrin16_lanes(minus_nu, &SERIES[16..]) * x16;
+                series_nu = small.select(series_nu, long);
+            }
+            let hh = 0.25 * w * w * (1.0 + w * series_nu);
+            let g = 1.0 - q * hh;
+            h = half.select(hh, h);
+            m = half.select(c_over_a - hh, m);
+            g_minus_h = half.select(g - hh, g_minus_h);
+        }
+        if closed.any() {
+            let t = s.sqrt_abs_d * inv_sqrt_c;
+            let inv_t = sqrt_c * s.inv_sqrt_abs_d;
+            let inv_q = big_c * s.inv_d;
+            let positive = q.gt(zero);
+            // The scalar atan and ln, lane by lane, on the lanes of this branch only.
+            let g = F4(std::array::from_fn(|l| {
+                if !closed.flags()[l] {
+                    0.0
+                } else if positive.flags()[l] {
+                    t.0[l].atan() * inv_t.0[l]
+                } else {
+                    0.5 * ((1.0 + t.0[l]) * (1.0 + t.0[l]) * c_over_a.0[l]).ln() * inv_t.0[l]
+                }
+            }));
+            let hc = (1.0 - g) * inv_q;
+            let mc = positive.select((g - c_over_a) * inv_q, c_over_a - hc);
+            let gc = positive.select(g - hc, (g * a_over_c - 1.0) * inv_q);
+            h = closed.select(hc, h);
+            m = closed.select(mc, m);
+            g_minus_h = closed.select(gc, g_minus_h);
+        }
+        let w_z = z2 * inv_c;
+        let w_rho = rho2 * inv_a;
+        let phi = -0.75 * inv_sqrt_c * (g_minus_h * (1.0 + w_z) + 2.0 * h * w_rho);
+        let k = inv_sqrt_c * inv_c;
+        let kr = -1.5 * m * k;
+        let kz = -3.0 * h * k;
+        let fields = std::array::from_fn(|l| Field {
+            potential: phi.0[l] * self.gm_over_scale,
+            acceleration: Vec3::new(kr.0[l] * px.0[l], kr.0[l] * py.0[l], kz.0[l] * pz.0[l])
+                * self.gm_over_scale2,
+        });
+        (fields, taken)
+    }
+
+    /// The batched field: [`LANES`] points at a time through [`Spheroid::field_lanes`], the
+    /// lanes it does not take and the remainder point by point; `pick` keeps what the caller
+    /// stores.
+    #[inline(always)]
+    fn batch<T>(&self, points: &[Vec3], out: &mut [T], pick: impl Fn(Field) -> T) {
+        let n = points.len().min(out.len());
+        let (points, out) = (&points[..n], &mut out[..n]);
+        let mut point_chunks = points.chunks_exact(LANES);
+        let mut out_chunks = out.chunks_exact_mut(LANES);
+        for (chunk, target) in (&mut point_chunks).zip(&mut out_chunks) {
+            let (fields, taken) = self.field_lanes([chunk[0], chunk[1], chunk[2], chunk[3]]);
+            for (slot, field) in target.iter_mut().zip(fields) {
+                *slot = pick(field);
+            }
+            for l in 0..LANES {
+                if !taken[l] {
+                    target[l] = pick(self.field_outlined(&chunk[l]));
+                }
+            }
+        }
+        for (r, slot) in point_chunks
+            .remainder()
+            .iter()
+            .zip(out_chunks.into_remainder())
+        {
+            *slot = pick(self.field_outlined(r));
+        }
+    }
+
+    /// [`Potential::field`] kept out of line, beside the lane code.
+    #[inline(never)]
+    fn field_outlined(&self, r: &Vec3) -> Field {
+        self.field(r)
+    }
+
+    /// [`Spheroid::batch`] compiled without extra target features.
+    fn fields_plain(&self, points: &[Vec3], out: &mut [Field]) {
+        self.batch(points, out, |f| f);
+    }
+
+    /// [`Spheroid::fields_plain`] for potentials only.
+    fn potentials_plain(&self, points: &[Vec3], out: &mut [Real]) {
+        self.batch(points, out, |f| f.potential);
+    }
+
+    /// [`Spheroid::batch`] compiled with AVX (no FMA, so every operation rounds as in the
+    /// scalar code).
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn fields_avx(&self, points: &[Vec3], out: &mut [Field]) {
+        self.batch(points, out, |f| f);
+    }
+
+    /// [`Spheroid::fields_avx`] for potentials only.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn potentials_avx(&self, points: &[Vec3], out: &mut [Real]) {
+        self.batch(points, out, |f| f.potential);
+    }
+}
+
+/// [`estrin16`] lane by lane.
+#[inline(always)]
+fn estrin16_lanes(x: F4, c: &[Real]) -> F4 {
+    let coefficient = |i: usize| c.get(i).copied().unwrap_or(0.0);
+    let v: [F4; 8] = std::array::from_fn(|i| coefficient(2 * i) + coefficient(2 * i + 1) * x);
+    let x2 = x * x;
+    let x4 = x2 * x2;
+    let x8 = x4 * x4;
+    let v01 = v[0] + v[1] * x2;
+    let v23 = v[2] + v[3] * x2;
+    let v45 = v[4] + v[5] * x2;
+    let v67 = v[6] + v[7] * x2;
+    (v01 + v23 * x4) + (v45 + v67 * x4) * x8
+}
+
 impl Potential for Spheroid {
     fn as_typed(&self) -> crate::TypedPotential<'_> {
         crate::TypedPotential::Spheroid(self)
@@ -469,6 +684,29 @@ impl Potential for Spheroid {
             return Region::Outside;
         }
         region_of_excess(excess_of(&p, &s.axes, &s.inv_axes, &s.inv_axes2).0)
+    }
+
+    /// Four points at a time through one lane-interleaved evaluation (AVX where the CPU has
+    /// it), each result bit for bit [`Potential::field`]'s.
+    fn fields_into(&self, points: &[Vec3], out: &mut [Field]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: AVX was just detected on this CPU (std caches the answer).
+            unsafe { self.fields_avx(points, out) };
+            return;
+        }
+        self.fields_plain(points, out);
+    }
+
+    /// As [`Potential::fields_into`], keeping the potentials.
+    fn potentials_into(&self, points: &[Vec3], out: &mut [Real]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: AVX was just detected on this CPU (std caches the answer).
+            unsafe { self.potentials_avx(points, out) };
+            return;
+        }
+        self.potentials_plain(points, out);
     }
 
     #[inline]
@@ -523,6 +761,125 @@ impl Potential for Spheroid {
         Field {
             potential: phi * self.gm_over_scale,
             acceleration: Vec3::new(kr * p.x, kr * p.y, kz * p.z) * self.gm_over_scale2,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn same(a: f64, b: f64) -> bool {
+        a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+    }
+
+    /// Points for the batched field, in units of the larger radius: along directions spread
+    /// over the sphere (with the axis and the equator), at the surface scaled by factors from
+    /// inside (0.3) through the surface (1 ± 1e-12) to 1e6 body sizes, so that every branch of
+    /// the shape functions, the cancelling form of $\rho^2 - a^2$ and both sides of the
+    /// far-field limit occur; non-finite points follow; shuffled so that groups of four mix.
+    fn batch_points(a: f64, c: f64) -> Vec<Vec3> {
+        let mut state = 5u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut directions = vec![Vec3::z(), -Vec3::z(), Vec3::x(), Vec3::new(0.6, -0.8, 0.0)];
+        for _ in 0..60 {
+            let z = 2.0 * next() - 1.0;
+            let phi = std::f64::consts::TAU * next();
+            let s = (1.0 - z * z).sqrt();
+            directions.push(Vec3::new(s * phi.cos(), s * phi.sin(), z));
+        }
+        let factors = [
+            0.0,
+            0.3,
+            0.999,
+            1.0 - 1e-12,
+            1.0,
+            1.0 + 1e-12,
+            1.0 + 1e-9,
+            1.0 + 1e-6,
+            1.001,
+            1.01,
+            1.1,
+            1.3,
+            1.7,
+            2.5,
+            4.0,
+            10.0,
+            100.0,
+            1e4,
+            1e6,
+            1e21,
+        ];
+        let mut points = Vec::new();
+        for dir in &directions {
+            let surface =
+                1.0 / ((dir.x / a).powi(2) + (dir.y / a).powi(2) + (dir.z / c).powi(2)).sqrt();
+            for f in factors {
+                points.push(dir * (surface * f));
+            }
+        }
+        points.push(Vec3::new(f64::NAN, 0.1, 0.2));
+        points.push(Vec3::new(0.3, f64::INFINITY, 0.0));
+        points.push(Vec3::new(0.3, 0.2, f64::NEG_INFINITY));
+        for k in (1..points.len()).rev() {
+            let j = ((next() * (k + 1) as f64) as usize).min(k);
+            points.swap(k, j);
+        }
+        points
+    }
+
+    /// The batched field (both compilations) and potentials are the point-by-point field bit
+    /// for bit, for oblate, prolate, near-spherical and spherical spheroids (SI-sized too),
+    /// at every batch offset.
+    #[test]
+    fn batched_fields_are_the_scalar_fields_bit_for_bit() {
+        let bodies = [
+            (1.0, 0.25),
+            (0.25, 1.0),
+            (1.0, 1e-3),
+            (1e-3, 1.0),
+            (1.0, 1.0 - 1e-9),
+            (1.0, 1.0),
+            (766.0, 673.5),
+        ];
+        for (a, c) in bodies {
+            let body = Spheroid::new(a, c, 1.3).unwrap();
+            let scale = a.max(c);
+            let points: Vec<Vec3> = batch_points(a / scale, c / scale)
+                .iter()
+                .map(|p| p * scale)
+                .collect();
+            let want: Vec<Field> = points.iter().map(|r| body.field(r)).collect();
+            for start in 0..4 {
+                let (points, want) = (&points[start..], &want[start..]);
+                let blank = Field {
+                    potential: 0.0,
+                    acceleration: Vec3::zeros(),
+                };
+                let mut runs = Vec::new();
+                let mut out = vec![blank; points.len()];
+                body.fields_into(points, &mut out);
+                runs.push(("fields_into", out.clone()));
+                body.fields_plain(points, &mut out);
+                runs.push(("fields_plain", out.clone()));
+                for (name, got) in &runs {
+                    for ((r, g), w) in points.iter().zip(got).zip(want) {
+                        let equal = same(g.potential, w.potential)
+                            && (0..3).all(|i| same(g.acceleration[i], w.acceleration[i]));
+                        assert!(equal, "{name} ({a}, {c}) at {r:?}: {g:?} vs {w:?}");
+                    }
+                }
+                let mut potentials = vec![0.0; points.len()];
+                body.potentials_into(points, &mut potentials);
+                for ((r, &g), w) in points.iter().zip(&potentials).zip(want) {
+                    assert!(same(g, w.potential), "potentials_into ({a}, {c}) at {r:?}");
+                }
+            }
         }
     }
 }
