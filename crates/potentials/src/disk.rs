@@ -319,13 +319,22 @@ impl UniformDisk {
         let (points, out) = (&points[..n], &mut out[..n]);
         for (chunk, target) in points.chunks(LANES).zip(out.chunks_mut(LANES)) {
             let mut near = [None; LANES];
+            let mut far = [None; LANES];
             for (l, r) in chunk.iter().enumerate() {
                 let rho = hypot(r.x, r.y);
                 let dist = hypot(rho, r.z);
                 if dist >= FAR_FIELD_RADII * self.radius {
-                    target[l] = pick(self.far_field(r, dist));
+                    far[l] = Some((*r, dist));
                 } else {
                     near[l] = Some(self.near_point(r, rho));
+                }
+            }
+            if far.iter().any(Option::is_some) {
+                let fields = self.far_field_lanes(&far);
+                for (l, point) in far.iter().enumerate() {
+                    if point.is_some() {
+                        target[l] = pick(fields[l]);
+                    }
                 }
             }
             if near.iter().all(Option::is_none) {
@@ -377,6 +386,64 @@ impl UniformDisk {
     #[target_feature(enable = "avx")]
     unsafe fn potentials_avx(&self, points: &[Vec3], out: &mut [Real]) {
         self.batch(points, out, |f| f.potential);
+    }
+
+    /// [`UniformDisk::far_field`] for up to [`LANES`] points (`Some((point, dist))`) side by
+    /// side: the same terms in the same order, each lane's sums frozen once its own series
+    /// has stopped; the entries of the `None` lanes are meaningless.
+    #[inline(always)]
+    fn far_field_lanes(&self, points: &[Option<(Vec3, Real)>; LANES]) -> [Field; LANES] {
+        let tables = series_tables();
+        let lane = |f: fn(&(Vec3, Real)) -> Real, default: Real| {
+            F4(std::array::from_fn(|l| {
+                points[l].as_ref().map_or(default, f)
+            }))
+        };
+        let dist = lane(|p| p.1, 1.0);
+        let u = lane(|p| p.0.z, 0.0) / dist;
+        let ratio = self.radius / dist;
+        let t = ratio * ratio;
+        let (mut p_even, mut p_odd) = (F4::splat(1.0), u);
+        let (mut d_even, mut d_odd) = (F4::splat(0.0), F4::splat(1.0));
+        let zero = F4::splat(0.0);
+        let (mut sum_potential, mut sum_axial, mut sum_radial) = (zero, zero, zero);
+        let mut t_power = F4::splat(1.0);
+        let mut active = M4::from_flags(std::array::from_fn(|l| points[l].is_some()));
+        for l in 0..SERIES_TERMS {
+            let c = tables.coefficient[l] * t_power;
+            let k = 2 * l + 1;
+            sum_potential = active.select(sum_potential + c * p_even, sum_potential);
+            sum_axial = active.select(sum_axial + c * tables.odd_degree[l] * p_odd, sum_axial);
+            sum_radial = active.select(sum_radial + c * d_odd, sum_radial);
+            let done = (c.abs() * (tables.odd_degree[l] + 1.0)).lt(F4::splat(1e-17));
+            active = active.and(done.not());
+            if !active.any() {
+                break;
+            }
+            let p_next_even = tables.rec_a[k] * u * p_odd - tables.rec_b[k] * p_even;
+            let d_next_even = d_even + tables.rec_c[k] * p_odd;
+            let p_next_odd = tables.rec_a[k + 1] * u * p_next_even - tables.rec_b[k + 1] * p_odd;
+            let d_next_odd = d_odd + tables.rec_c[k + 1] * p_next_even;
+            p_even = p_next_even;
+            p_odd = p_next_odd;
+            d_even = d_next_even;
+            d_odd = d_next_odd;
+            t_power = t_power * t;
+        }
+        let gm_over_r = self.gm / dist;
+        let gm_over_r2 = gm_over_r / dist;
+        std::array::from_fn(|l| {
+            let p = points[l].map_or(Vec3::zeros(), |p| p.0);
+            let (dist, gm_over_r, gm_over_r2) = (dist.0[l], gm_over_r.0[l], gm_over_r2.0[l]);
+            Field {
+                potential: -gm_over_r * sum_potential.0[l],
+                acceleration: Vec3::new(
+                    -gm_over_r2 * (p.x / dist) * sum_radial.0[l],
+                    -gm_over_r2 * (p.y / dist) * sum_radial.0[l],
+                    -gm_over_r2 * sum_axial.0[l],
+                ),
+            }
+        })
     }
 
     /// The exterior Legendre series, for points at `dist` ≥ `FAR_FIELD_RADII` radii.
