@@ -75,6 +75,14 @@
 //! $\partial\_\rho (r^{-n-1}P_n) = -r^{-n-2}\sin\theta\\,P'\_{n+1}$. At $r = 2R$ the series needs 29
 //! terms; at $r = 10R$, 10; at $r = 10^8 R$, 3.
 //!
+//! # Batches
+//!
+//! [`Potential::fields_into`] and [`Potential::potentials_into`] take four points at a time:
+//! the Gauss iterations of the near ones and the exterior series of the far ones run side by
+//! side in lanes (one vector instruction per operation), each lane frozen once its own
+//! iteration or series has stopped, so that every result is bit for bit the point's own
+//! [`Potential::field`].
+//!
 //! # Accuracy
 //!
 //! Against 50-digit evaluations (mpmath) of the formulas above, themselves checked against the
@@ -340,13 +348,16 @@ impl UniformDisk {
             if near.iter().all(Option::is_none) {
                 continue;
             }
-            let lane = |f: fn(&NearPoint) -> Real| {
-                F4(std::array::from_fn(|l| near[l].as_ref().map_or(1.0, f)))
-            };
+            let kc = F4(std::array::from_fn(|l| {
+                near[l].as_ref().map_or(1.0, |p| p.kc)
+            }));
+            let snc = F4(std::array::from_fn(|l| {
+                near[l].as_ref().map_or(1.0, |p| p.snc)
+            }));
             let want_pi = M4::from_flags(std::array::from_fn(|l| {
                 near[l].as_ref().is_some_and(|p| p.use_pi_track)
             }));
-            let g = gauss_lanes(lane(|p| p.kc), lane(|p| p.snc), want_pi);
+            let g = gauss_lanes(kc, snc, want_pi);
             for (l, point) in near.iter().enumerate() {
                 if let Some(point) = point {
                     target[l] = pick(self.near_finish(point, &g[l]));
@@ -394,13 +405,8 @@ impl UniformDisk {
     #[inline(always)]
     fn far_field_lanes(&self, points: &[Option<(Vec3, Real)>; LANES]) -> [Field; LANES] {
         let tables = series_tables();
-        let lane = |f: fn(&(Vec3, Real)) -> Real, default: Real| {
-            F4(std::array::from_fn(|l| {
-                points[l].as_ref().map_or(default, f)
-            }))
-        };
-        let dist = lane(|p| p.1, 1.0);
-        let u = lane(|p| p.0.z, 0.0) / dist;
+        let dist = F4(std::array::from_fn(|l| points[l].map_or(1.0, |p| p.1)));
+        let u = F4(std::array::from_fn(|l| points[l].map_or(0.0, |p| p.0.z))) / dist;
         let ratio = self.radius / dist;
         let t = ratio * ratio;
         let (mut p_even, mut p_odd) = (F4::splat(1.0), u);

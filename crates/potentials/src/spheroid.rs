@@ -57,6 +57,10 @@
 //!   $\operatorname{artanh}\sqrt{-q} = \tfrac12 \ln\bigl((1 + \sqrt{-q})^2 C/A\bigr)$.
 //! - Coordinates are scaled by a power of two near the larger radius (exact), so SI magnitudes
 //!   cost nothing; beyond $10^{20}$ body sizes the field is the point mass's.
+//! - Batches ([`Potential::fields_into`], [`Potential::potentials_into`]) are evaluated four
+//!   points at a time, in lanes, each branch of the shape functions only where a lane needs it
+//!   and selected lane by lane; every result is bit for bit the point's own
+//!   [`Potential::field`] (points inside the body take the scalar path).
 //!
 //! Measured against the Dirichlet integral at 36 digits (mpmath) over c/a from $10^{-4}$ to
 //! $10^4$ (including $c = a(1 \pm 10^{-9})$ and $c = a$), gaps of $10^{-12}$ to 1 above the
