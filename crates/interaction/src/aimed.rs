@@ -17,6 +17,12 @@
 //! circle), so whatever the pose, the integrand varies fastest near $\theta = 0$ and slowly in
 //! $\varphi$ there.
 //!
+//! Where X is a body of revolution and Y's field is symmetric about X's axis (bodies stacked on
+//! a common axis), the nearest singular point is a whole circle about that axis, and the pole
+//! goes on the axis instead ([`coaxial_pole`]): the integrand then does not depend on
+//! $\varphi$ beyond the area vector's own $e^{\pm i\varphi}$, and 8 azimuths integrate it
+//! exactly at every level.
+//!
 //! # Clustering in the polar angle
 //!
 //! If the nearest singular point lies at distance $\delta$ from the pole and the surface
@@ -62,7 +68,7 @@ use super::kernel::{add_solid_node, FrameMap, NodeConstants, SolidBlock, SolidSu
 use nalgebra::{Complex, Matrix3};
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
-use surfgrav_potentials::{Field, Potential};
+use surfgrav_potentials::{Field, Potential, Symmetry};
 use surfgrav_quadrature::{GaussLegendre, Rule1D};
 use surfgrav_surfaces::{EllipsoidSurface, Real, Vec3};
 
@@ -193,7 +199,11 @@ fn azimuth_ratio(aim: &Aim) -> Real {
 
 /// The grid of level `polar` (Gauss–Legendre nodes in $u$) for this aim.
 pub(crate) fn grid_key(polar: u16, aim: &Aim) -> GridKey {
-    let azimuth = (2.0 * (azimuth_ratio(aim) * Real::from(polar)).ceil()).max(8.0) as u16;
+    let azimuth = if aim.coaxial {
+        COAXIAL_AZIMUTHS
+    } else {
+        (2.0 * (azimuth_ratio(aim) * Real::from(polar)).ceil()).max(8.0) as u16
+    };
     GridKey {
         polar,
         azimuth,
@@ -354,6 +364,9 @@ pub(crate) struct Aim {
     /// unknown shape (a polyhedron, a custom field) keeps the nearest point's prediction and
     /// the balanced product rule.
     pub(crate) known: bool,
+    /// Whether the integrand is symmetric about the pole's axis ([`coaxial_pole`]): then
+    /// [`COAXIAL_AZIMUTHS`] azimuths integrate it exactly, whatever the polar count.
+    pub(crate) coaxial: bool,
 }
 
 /// The set where a body's exterior field, continued toward X, is singular (its body frame):
@@ -509,11 +522,59 @@ pub(crate) fn nearest_singular_point(
     (x_point, to_x(&y_point))
 }
 
+/// Azimuths of a level whose integrand is symmetric about the pole's axis: the area vector
+/// and the moment arms bring the azimuthal modes $e^{\pm i\varphi}$ into the integrands
+/// (force, both torque forms, energy), which the periodic trapezoid rule with 8 nodes
+/// integrates exactly (every mode below 8).
+const COAXIAL_AZIMUTHS: u16 = 8;
+
+/// How far (relative to the distance between the centroids) Y's centroid may lie off X's
+/// axis, and how far (in radians) Y's axis may turn from it, for the integrand to count as
+/// symmetric about that axis: an offset $\varepsilon$ puts modes of relative size about
+/// $\varepsilon^k$ into the azimuthal content, and the first one the 8 nodes alias ($k = 8$) is
+/// then below $10^{-70}$.
+const COAXIAL_TOLERANCE: Real = 1e-9;
+
+/// The pole on X's symmetry axis, toward Y, where the integrand over X is symmetric about
+/// that axis: X a body of revolution about its $z$ axis (equal $x$ and $y$ semi-axes) and Y's
+/// field symmetric about the same line (a sphere or point centred on it, or a spheroid or
+/// disk whose axis lies along it). The nearest point of Y's singular set is then a whole
+/// circle about the axis (an oblate spheroid's focal circle, a disk's rim), or a point on it
+/// (a prolate spheroid's focal segment), and the pole the general rule would aim at one
+/// point of that circle would break the symmetry (`stacked` configurations: two oblate
+/// spheroids on a common axis at gap 0.1 took 2,338 evaluations).
+fn coaxial_pole(axes: &Vec3, y: &Body, map: &FrameMap) -> Option<Vec3> {
+    if axes.x != axes.y {
+        return None;
+    }
+    // Y's centroid and axis in X's frame.
+    let centre = map.back(&(-map.offset));
+    let distance = centre.norm();
+    if distance.is_nan() || distance <= 0.0 || centre.xy().norm() > COAXIAL_TOLERANCE * distance {
+        return None;
+    }
+    let symmetric = match y.symmetry() {
+        Symmetry::Spherical => true,
+        Symmetry::Axisymmetric => map.back(&Vec3::z()).xy().norm() <= COAXIAL_TOLERANCE,
+        _ => false,
+    };
+    symmetric.then(|| Vec3::z() * centre.z.signum())
+}
+
 /// The aim for integrating over the ellipsoid `e` (integration frame) in Y's field.
 pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Real) -> Aim {
     let axes = e.semi_axes();
-    let (x_point, singular) =
-        nearest_singular_point(y, map, |r| nearest_on_ellipsoid(&axes, r), axes.max());
+    let coaxial = coaxial_pole(&axes, y, map);
+    let (x_point, singular) = match coaxial {
+        // The pole's point and Y's singular point nearest to it.
+        Some(pole) => {
+            let x_point = pole * axes.z;
+            let set = singular_set(y);
+            let singular = map.back(&(set.nearest(&map.apply(&x_point)) - map.offset));
+            (x_point, singular)
+        }
+        None => nearest_singular_point(y, map, |r| nearest_on_ellipsoid(&axes, r), axes.max()),
+    };
     let delta = (singular - x_point).norm();
     let pole = x_point.component_div(&axes).normalize();
     // Tangent basis at the pole; e1 along the direction the surface stretches most.
@@ -561,6 +622,7 @@ pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Rea
             start: polar_for(cluster),
             anisotropy,
             known: false,
+            coaxial: coaxial.is_some(),
         };
     }
     let mut angles = [Complex::new(0.0, width); RIM_SAMPLES];
@@ -589,6 +651,7 @@ pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Rea
         start: polar_for(0),
         anisotropy,
         known: true,
+        coaxial: coaxial.is_some(),
     };
     let mut best_cost = grid_key(best.start, &best).size();
     // Candidates: the product rule and the tabulated maps from the weakest to two steps

@@ -1,0 +1,130 @@
+//! Bodies on a common axis (issue 12's "two spheroids stacked on a common axis"): where X is a
+//! body of revolution and Y's field is symmetric about X's axis, the aimed rule puts its pole
+//! on that axis and integrates the azimuth with 8 nodes, exactly (`aimed::coaxial_pole`).
+//! Every configuration must certify 10⁻¹², agree with the independent reference (the ladder
+//! at 10⁻¹³ over the other body, polar-angle form) within the two estimates, and cost what the
+//! symmetric rule costs: before it, two oblate spheroids stacked at gap 0.1 took 2,338
+//! evaluations (the pole was aimed at one point of the other's focal circle).
+
+use nalgebra::{UnitQuaternion, Vector3};
+use surfgrav_interaction::work_precision::{independent_reference, interaction_error};
+use surfgrav_interaction::{Body, InteractionEngine};
+use surfgrav_potentials::{Pose, PoseExt, Spheroid, UniformDisk, Vec3};
+
+const TOLERANCE: f64 = 1e-12;
+const REFERENCE_TOLERANCE: f64 = 1e-13;
+
+fn oblate() -> Body {
+    Body::spheroid(Spheroid::new(1.0, 0.5, 1.0).unwrap()).unwrap()
+}
+fn prolate() -> Body {
+    Body::spheroid(Spheroid::new(0.5, 1.0, 0.8).unwrap()).unwrap()
+}
+fn small_oblate() -> Body {
+    Body::spheroid(Spheroid::new(0.4, 0.3, 0.3).unwrap()).unwrap()
+}
+fn disk() -> Body {
+    Body::disk(UniformDisk::new(0.9, 0.5).unwrap()).unwrap()
+}
+
+/// Checks one configuration: B on A's axis at height `z`, turned by `turn_b`; returns the
+/// evaluations.
+fn check(label: &str, a: &Body, b: &Body, z: f64, turn_b: UnitQuaternion<f64>) -> usize {
+    let pose_a = Pose::identity();
+    let pose_b = Pose::from_position_rotation(Vec3::new(0.0, 0.0, z), turn_b);
+    let result = InteractionEngine::default()
+        .interact(a, &pose_a, b, &pose_b)
+        .unwrap_or_else(|e| panic!("{label}: {e}"));
+    assert!(result.error_estimate <= TOLERANCE, "{label}");
+    let (reference, certified) =
+        independent_reference(a, &pose_a, b, &pose_b, REFERENCE_TOLERANCE).unwrap();
+    assert!(certified, "{label}: reference not certified");
+    let error = interaction_error(&result, &reference);
+    assert!(
+        error <= result.error_estimate + reference.error_estimate,
+        "{label}: true error {error:.2e}, estimate {:.2e} + reference {:.2e}",
+        result.error_estimate,
+        reference.error_estimate
+    );
+    // The symmetric configuration has no sideways force.
+    assert!(
+        result.force_on_a.xy().norm() <= 1e-12 * result.force_on_a.norm(),
+        "{label}: sideways force {:?}",
+        result.force_on_a
+    );
+    result.evaluations
+}
+
+#[test]
+fn bodies_on_a_common_axis_certify_at_the_cost_of_the_symmetric_rule() {
+    let upright = UnitQuaternion::identity();
+    let about_axis = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.7);
+    let flipped = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI);
+    let (oblate, prolate, small, disk) = (oblate(), prolate(), small_oblate(), disk());
+    let mut worst = 0;
+    for gap in [0.05, 0.2, 1.0, 5.0] {
+        // Heights of B's centroid for surfaces `gap` apart along the axis.
+        let cases = [
+            ("oblate over oblate", &oblate, &oblate, 1.0 + gap, upright),
+            (
+                "oblate under oblate",
+                &oblate,
+                &oblate,
+                -(1.0 + gap),
+                about_axis,
+            ),
+            (
+                "prolate over prolate",
+                &prolate,
+                &prolate,
+                2.0 + gap,
+                flipped,
+            ),
+            ("prolate over oblate", &oblate, &prolate, 1.5 + gap, upright),
+            (
+                "small oblate over oblate",
+                &oblate,
+                &small,
+                0.8 + gap,
+                about_axis,
+            ),
+            ("disk over oblate", &oblate, &disk, 0.5 + gap, flipped),
+            ("oblate over disk", &disk, &oblate, 0.5 + gap, upright),
+        ];
+        for (name, a, b, z, turn) in cases {
+            let evaluations = check(&format!("{name}, gap {gap}"), a, b, z, turn);
+            if !name.contains("disk") {
+                worst = worst.max(evaluations);
+            }
+        }
+    }
+    // Measured: at most 512 (prolate over oblate, gap 0.05) over the solids; the general rule
+    // took 2,338 at gap 0.1 for the stacked oblate pair. (A disk is integrated over by the
+    // aimed lamina rule, not this one: checked for accuracy only.)
+    assert!(worst <= 800, "{worst} evaluations");
+}
+
+/// Just off the axis the symmetric rule is not used, and the general rule certifies.
+#[test]
+fn an_offset_off_the_axis_takes_the_general_rule() {
+    let a = oblate();
+    let pose_a = Pose::identity();
+    let pose_b =
+        Pose::from_position_rotation(Vec3::new(1e-6, 0.0, 1.1), UnitQuaternion::identity());
+    let result = InteractionEngine::default()
+        .interact(&a, &pose_a, &a, &pose_b)
+        .unwrap();
+    assert!(result.error_estimate <= TOLERANCE);
+    let (reference, _) =
+        independent_reference(&a, &pose_a, &a, &pose_b, REFERENCE_TOLERANCE).unwrap();
+    let error = interaction_error(&result, &reference);
+    assert!(
+        error <= result.error_estimate + reference.error_estimate,
+        "{error:.2e}"
+    );
+    assert!(
+        result.evaluations > 1000,
+        "{} evaluations",
+        result.evaluations
+    );
+}
