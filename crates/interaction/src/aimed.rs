@@ -496,7 +496,8 @@ pub(crate) fn nearest_on_ellipsoid(axes: &Vec3, q: &Vec3) -> Vec3 {
 /// point of X; or a circle, whose projection is not convex but whose alternating projections
 /// still settle at a locally nearest pair) and the singular set of Y's field (`map`: X's frame
 /// into Y's), by alternating projections (convergent to a nearest pair for two convex sets),
-/// stopped once a step moves the point on Y's set by less than $10^{-6}$ `scale`. Returns the
+/// stopped once a step moves the point on Y's set by less than $10^{-6}$ `scale` or $10^{-3}$
+/// of the distance between the two points. Returns the
 /// point of X and the singular point, both in X's frame.
 pub(crate) fn nearest_singular_point(
     y: &Body,
@@ -515,7 +516,10 @@ pub(crate) fn nearest_singular_point(
         let next = project_set(&to_y(&x_point));
         let moved = (next - y_point).norm();
         y_point = next;
-        if moved <= 1e-6 * scale {
+        // Far from contact the pole need not be placed to 1e-6 of X's size: to 1e-3 of the
+        // gap it moves the singularity off the pole by 1e-3 of its own width, which no
+        // polar count notices.
+        if moved <= 1e-6 * scale || moved <= 1e-3 * (to_x(&y_point) - x_point).norm() {
             break;
         }
     }
