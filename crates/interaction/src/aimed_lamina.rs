@@ -119,6 +119,8 @@ pub(crate) struct ClusteredSide {
     width: Real,
     /// The predicted node count for the tolerance.
     predicted: Real,
+    /// The sinh map's $\mu = \operatorname{asinh}(L/w)$ (0 for plain Gauss–Legendre).
+    mu: Real,
 }
 
 /// The Gauss–Legendre count on $u \in [0, 1]$ whose error bound $\rho^{-2n}$ meets
@@ -126,7 +128,10 @@ pub(crate) struct ClusteredSide {
 fn bernstein_count(u: Complex<Real>, tolerance: Real) -> Real {
     // The ellipse with foci 0 and 1 through u: semi-major axis (in units of the half-length)
     // a = (|u| + |u - 1|), and rho = a + sqrt(a^2 - 1).
-    let a = u.norm() + (u - Complex::new(1.0, 0.0)).norm();
+    // Moduli by square roots (`Complex::norm` calls the C library's `hypot`, several times
+    // slower, and the plans evaluate this for every point and candidate width).
+    let modulus = |re: Real, im: Real| (re * re + im * im).sqrt();
+    let a = modulus(u.re, u.im) + modulus(u.re - 1.0, u.im);
     let rho = (a + (a * a - 1.0).max(0.0).sqrt()).max(1.0 + 1e-3);
     (1.0 / tolerance).ln() / (2.0 * rho.ln())
 }
@@ -162,7 +167,7 @@ impl ClusteredSide {
         let mut fewest = candidates[0].1;
         let scale = singular
             .iter()
-            .map(|t| t.norm())
+            .map(|t| (t.re * t.re + t.im * t.im).sqrt())
             .fold(Real::INFINITY, Real::min)
             .max(1e-12 * length);
         for (k, slot) in (-6..=2).zip(candidates.iter_mut().skip(1)) {
@@ -172,7 +177,7 @@ impl ClusteredSide {
             }
             let mu = (length / width).asinh();
             let predicted = worst(
-                &|t| bernstein_count((t / width).asinh() / mu, tolerance),
+                &|t| bernstein_count(super::asinh(t / width) / mu, tolerance),
                 WIDTH_SLACK * fewest,
             );
             fewest = fewest.min(predicted);
@@ -192,10 +197,16 @@ impl ClusteredSide {
         } else {
             candidates[0]
         };
+        let mu = if width.is_finite() {
+            (length / width).asinh()
+        } else {
+            0.0
+        };
         Self {
             length,
             width,
             predicted,
+            mu,
         }
     }
 
@@ -210,7 +221,7 @@ impl ClusteredSide {
     #[inline]
     fn map(&self, u: Real) -> (Real, Real) {
         if self.width.is_finite() {
-            let mu = (self.length / self.width).asinh();
+            let mu = self.mu;
             let (sinh, cosh) = ((mu * u).sinh(), (mu * u).cosh());
             (self.width * sinh, self.width * mu * cosh)
         } else {
@@ -419,7 +430,7 @@ pub(crate) fn lamina_aim(
     let angular = |k: i32| {
         let mut out = [Complex::new(0.0, 0.0); MAX_SINGULAR];
         for (o, &(phi, s_k, h_k)) in out.iter_mut().zip(stretch) {
-            let width = angular_width(s_k.hypot(h_k).min(radius), s_k, h_k);
+            let width = angular_width((s_k * s_k + h_k * h_k).sqrt().min(radius), s_k, h_k);
             *o = Complex::new(offset(phi, angle_centre), width * Real::from(k).exp2());
         }
         out
