@@ -378,6 +378,13 @@ fn near_stretch(
 /// is within this factor of the narrowest.
 const STRETCH: Real = 4.0;
 
+/// Gauss–Legendre nodes per angular half-range $[0, \pi]$ at the first level where Y's field is
+/// symmetric about the disk's axis (`aimed::coaxial_pole`): the area integrands are then a
+/// constant plus $\cos\varphi$ and $\sin\varphi$ terms, which 8 nodes integrate to about
+/// $5\cdot10^{-15}$ (the error bound $\pi^{17}(8!)^4/(17\\,(16!)^3)$ for the cosine), and later
+/// levels scale the count with the radial ones.
+const COAXIAL_ANGLES: Real = 8.0;
+
 /// The aimed rule is used only where Y's singular set comes within this many disk radii of
 /// the disk; farther, the fixed lamina table (azimuth clustered toward Y, halved by a mirror
 /// symmetry) is cheaper. Chosen by timing the 48 disk cases of the random-pose set
@@ -414,7 +421,10 @@ pub(crate) fn lamina_aim(
     // points spread along it (a curve's neighbouring points, off the clustering point, limit
     // a rule clustered for the nearest one); otherwise against q and q_rim alone.
     let (points, len) = near_stretch(radius, &q, &q_rim, &samples);
-    let stretch = &points[..if len > 2 { len } else { 0 }];
+    // On a common axis the singular points nearest the disk form a circle about its centre,
+    // all at the same radius and height: q alone stands for them.
+    let coaxial = super::coaxial_pole(&axes, y, map).is_some();
+    let stretch = &points[..if len > 2 && !coaxial { len } else { 0 }];
     // The stretch model needs no margin for a curve where its samples resolve the curve near
     // q (the narrowest angular singularity at least the samples' spacing).
     let margin = if !stretch.is_empty() && eta >= std::f64::consts::TAU / RIM_SAMPLES as Real {
@@ -498,6 +508,19 @@ pub(crate) fn lamina_aim(
         inward.map(|side| side.with_margin(margin)),
         outward.map(|side| side.with_margin(margin)),
     );
+    let (angle, angles, rim) = if coaxial {
+        // The integrand does not depend on the angle beyond the moment arm's cos φ and sin φ:
+        // plain Gauss–Legendre with COAXIAL_ANGLES nodes on each half-range.
+        let plain = ClusteredSide {
+            length: PI,
+            width: Real::INFINITY,
+            predicted: COAXIAL_ANGLES,
+            mu: 0.0,
+        };
+        (plain, [plain; ANGLE_TABLE], plain)
+    } else {
+        (angle, angles, rim)
+    };
     let largest = [Some(angle), inward, outward]
         .iter()
         .flatten()
