@@ -110,9 +110,11 @@ fn bodies_on_a_common_axis_certify_at_the_cost_of_the_symmetric_rule() {
     assert!(worst_disk <= 1000, "{worst_disk} evaluations over the disk");
 }
 
-/// Just off the axis the symmetric rule is not used, and the general rule certifies.
+/// Just off the axis the exact rule (8 azimuths at every level) is not used: it would not
+/// resolve the offset. The near-axis rule (pole on the axis, azimuths growing with the level)
+/// certifies, with more evaluations than the 336 of the exact rule at this gap (884 measured).
 #[test]
-fn an_offset_off_the_axis_takes_the_general_rule() {
+fn an_offset_off_the_axis_takes_growing_azimuths() {
     let a = oblate();
     let pose_a = Pose::identity();
     let pose_b =
@@ -129,8 +131,42 @@ fn an_offset_off_the_axis_takes_the_general_rule() {
         "{error:.2e}"
     );
     assert!(
-        result.evaluations > 1000,
+        result.evaluations > 500,
         "{} evaluations",
         result.evaluations
     );
+}
+
+/// Parallel axes with a small lateral offset (issue 12's "parallel axes, mostly axial
+/// offset"): the pole stays on X's axis (`NEAR_AXIS` in `aimed.rs`) and the results certify
+/// and agree with the reference. Two oblate spheroids at axial gap 0.1 and lateral offsets 0.05
+/// to 0.3 took 2,346 to 1,894 evaluations with the pole aimed at one point of the other's
+/// focal circle; on the axis, at most 1,202 (measured), bounded here by 1,500.
+#[test]
+fn parallel_axes_with_a_small_offset_keep_the_pole_on_the_axis() {
+    let a = oblate();
+    let pose_a = Pose::identity();
+    for offset in [0.05, 0.1, 0.3] {
+        let pose_b = Pose::from_position_rotation(
+            Vec3::new(offset, 0.0, 1.1),
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.3),
+        );
+        let result = InteractionEngine::default()
+            .interact(&a, &pose_a, &a, &pose_b)
+            .unwrap();
+        assert!(result.error_estimate <= TOLERANCE, "offset {offset}");
+        let (reference, certified) =
+            independent_reference(&a, &pose_a, &a, &pose_b, REFERENCE_TOLERANCE).unwrap();
+        assert!(certified);
+        let error = interaction_error(&result, &reference);
+        assert!(
+            error <= result.error_estimate + reference.error_estimate,
+            "offset {offset}: true error {error:.2e}"
+        );
+        assert!(
+            result.evaluations <= 1500,
+            "offset {offset}: {} evaluations",
+            result.evaluations
+        );
+    }
 }
