@@ -64,7 +64,7 @@
 //! the level after it certifies.
 
 use super::body::{Body, BodyShape};
-use super::kernel::{add_solid_node, FrameMap, NodeConstants, SolidBlock, SolidSums, BLOCK};
+use super::kernel::{FrameMap, SolidBlock, SolidSums, BLOCK};
 use nalgebra::{Complex, Matrix3};
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
@@ -107,11 +107,33 @@ pub(crate) const CLUSTER_WIDTHS: [Real; 22] = [
 const CACHED_NODES: usize = 1 << 20;
 
 /// A unit-sphere grid about the pole $+\hat{\mathbf z}$: directions and weights
-/// $w_u w\_\varphi \sin\theta\\,\theta'(u)$.
+/// $w_u w\_\varphi \sin\theta\\,\theta'(u)$, stored by component (struct of arrays) and padded
+/// to whole blocks of [`BLOCK`] nodes (direction $\hat{\mathbf z}$, weight 0), so that the node
+/// loop reads whole blocks without bounds checks; the padding is never evaluated or summed.
 #[derive(Debug)]
 pub(crate) struct SphereGrid {
-    directions: Vec<Vec3>,
-    weights: Vec<Real>,
+    /// Direction components and weights, [`BLOCK`] nodes per block.
+    blocks: Vec<GridBlock>,
+    /// The node count (without the padding).
+    len: usize,
+}
+
+/// One block of a [`SphereGrid`]: direction components and weights.
+#[derive(Debug, Clone, Copy)]
+struct GridBlock {
+    x: [Real; BLOCK],
+    y: [Real; BLOCK],
+    z: [Real; BLOCK],
+    weight: [Real; BLOCK],
+}
+
+impl GridBlock {
+    const PADDING: Self = Self {
+        x: [0.0; BLOCK],
+        y: [0.0; BLOCK],
+        z: [1.0; BLOCK],
+        weight: [0.0; BLOCK],
+    };
 }
 
 impl SphereGrid {
@@ -119,8 +141,9 @@ impl SphereGrid {
         let width = CLUSTER_WIDTHS[usize::from(cluster)];
         let rule = GaussLegendre::new(polar, 0.0, 1.0)?;
         let h = TAU / azimuth as Real;
-        let mut directions = Vec::with_capacity(polar * azimuth);
-        let mut weights = Vec::with_capacity(polar * azimuth);
+        let len = polar * azimuth;
+        let mut blocks = vec![GridBlock::PADDING; len.div_ceil(BLOCK)];
+        let mut index = 0;
         for (&u, &wu) in rule.nodes().iter().zip(rule.weights()) {
             let (theta, dtheta) = if width.is_finite() {
                 let mu = (PI / width).asinh();
@@ -136,18 +159,27 @@ impl SphereGrid {
             for j in 0..azimuth {
                 let phi = (j as Real + 0.5) * h;
                 let (sin_p, cos_p) = phi.sin_cos();
-                directions.push(Vec3::new(sin_t * cos_p, sin_t * sin_p, cos_t));
-                weights.push(w);
+                let (block, k) = (&mut blocks[index / BLOCK], index % BLOCK);
+                block.x[k] = sin_t * cos_p;
+                block.y[k] = sin_t * sin_p;
+                block.z[k] = cos_t;
+                block.weight[k] = w;
+                index += 1;
             }
         }
-        Ok(Self {
-            directions,
-            weights,
-        })
+        Ok(Self { blocks, len })
     }
 
     pub(crate) fn len(&self) -> usize {
-        self.directions.len()
+        self.len
+    }
+
+    /// The blocks with their node counts (the last one possibly partial).
+    fn blocks(&self) -> impl Iterator<Item = (&GridBlock, usize)> {
+        self.blocks
+            .iter()
+            .enumerate()
+            .map(move |(i, b)| (b, (self.len - i * BLOCK).min(BLOCK)))
     }
 }
 
@@ -721,7 +753,13 @@ pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Rea
 }
 
 /// The node sums over the ellipsoid `e` on the grid `grid` turned by `aim` (the same terms as
-/// the tables' loop: [`add_solid_node`]); `FULL`: torques and energy too, otherwise the force.
+/// the tables' loop, [`add_solid_node`](super::kernel::add_solid_node), each rounded the same
+/// way and added in the same order); `FULL`: torques and energy too, otherwise the force.
+///
+/// Each block of [`BLOCK`] nodes goes in three passes: the nodes (point, area vector, point in
+/// Y's frame) lane by lane over arrays, the batched field, then each node's terms lane by lane
+/// over arrays (compiled with AVX where the CPU has it: no FMA, so every operation rounds as
+/// in the scalar code), and only the additions into the sums in node order.
 #[inline(never)]
 pub(crate) fn aimed_sums<P: Potential + ?Sized, const FAR: bool, const FULL: bool>(
     e: &EllipsoidSurface,
@@ -730,51 +768,363 @@ pub(crate) fn aimed_sums<P: Potential + ?Sized, const FAR: bool, const FULL: boo
     source: &P,
     map: &FrameMap,
 ) -> SolidSums {
+    #[cfg(target_arch = "x86_64")]
+    let avx = std::arch::is_x86_feature_detected!("avx");
+    #[cfg(not(target_arch = "x86_64"))]
+    let avx = false;
     let axes = e.semi_axes();
-    let cofactor = Vec3::new(axes.y * axes.z, axes.x * axes.z, axes.x * axes.y);
+    let mut lanes = NodeLanes::new(
+        axes,
+        Vec3::new(axes.y * axes.z, axes.x * axes.z, axes.x * axes.y),
+        aim.frame,
+        *map,
+        source.potential(&map.apply(&Vec3::zeros())),
+    );
     let mut totals = super::kernel::SolidTotals::new();
     let mut sizes = super::kernel::SolidMagnitudes::default();
-    let reference = source.potential(&map.apply(&Vec3::zeros()));
-    let mut points = [Vec3::zeros(); BLOCK];
-    let mut area = [Vec3::zeros(); BLOCK];
-    let mut mapped = [Vec3::zeros(); BLOCK];
     let mut potentials = [0.0; BLOCK];
     let mut fields = [Field {
         potential: 0.0,
         acceleration: Vec3::zeros(),
     }; BLOCK];
-    for (block_directions, block_weights) in grid
-        .directions
-        .chunks(BLOCK)
-        .zip(grid.weights.chunks(BLOCK))
-    {
-        let n = block_directions.len();
-        for k in 0..n {
-            let s = aim.frame * block_directions[k];
-            points[k] = axes.component_mul(&s);
-            area[k] = cofactor.component_mul(&s) * block_weights[k];
-        }
-        for k in 0..n {
-            mapped[k] = map.apply(&points[k]);
+    for (d, n) in grid.blocks() {
+        if avx {
+            // SAFETY: AVX was detected on this CPU (std caches the answer).
+            #[cfg(target_arch = "x86_64")]
+            unsafe {
+                lanes.nodes_avx(d)
+            };
+        } else {
+            lanes.nodes(d);
         }
         if FULL || FAR {
-            source.fields_into(&mapped[..n], &mut fields[..n]);
+            source.fields_into(&lanes.mapped[..n], &mut fields[..n]);
         } else {
-            source.potentials_into(&mapped[..n], &mut potentials[..n]);
+            source.potentials_into(&lanes.mapped[..n], &mut potentials[..n]);
             for k in 0..n {
                 fields[k].potential = potentials[k];
             }
         }
-        let mut block = SolidBlock::default();
-        for k in 0..n {
-            let w = &area[k];
-            let x = points[k];
-            let constants = NodeConstants::new(x, w);
-            add_solid_node::<FAR, FULL>(
-                &mut block, &mut sizes, &fields[k], map, w, &constants, reference,
-            );
+        if avx {
+            // SAFETY: as above.
+            #[cfg(target_arch = "x86_64")]
+            unsafe {
+                lanes.terms_avx::<FAR, FULL>(&fields)
+            };
+        } else {
+            lanes.terms::<FAR, FULL>(&fields);
         }
-        totals.add::<FULL>(&block);
+        totals.add::<FULL>(&lanes.sum::<FAR, FULL>(&mut sizes, n));
     }
     totals.finish(&sizes)
+}
+
+/// One block of [`aimed_sums`] by component (struct of arrays): the nodes' points
+/// $\mathbf x$, weighted area vectors $\mathbf W$, points in Y's frame and terms.
+#[derive(Debug, Clone, Copy)]
+struct NodeLanes {
+    axes: Vec3,
+    cofactor: Vec3,
+    frame: Matrix3<Real>,
+    map: FrameMap,
+    reference: Real,
+    x: [[Real; BLOCK]; 3],
+    w: [[Real; BLOCK]; 3],
+    mapped: [Vec3; BLOCK],
+    flux: [[Real; BLOCK]; 3],
+    moment: [[Real; BLOCK]; 3],
+    gradient: [[Real; BLOCK]; 3],
+    acceleration: [[Real; BLOCK]; 3],
+    energy: [Real; BLOCK],
+    size_potential: [Real; BLOCK],
+    size_flux: [Real; BLOCK],
+    size_moment: [Real; BLOCK],
+    size_energy: [Real; BLOCK],
+    size_acceleration: [Real; BLOCK],
+}
+
+impl NodeLanes {
+    fn new(
+        axes: Vec3,
+        cofactor: Vec3,
+        frame: Matrix3<Real>,
+        map: FrameMap,
+        reference: Real,
+    ) -> Self {
+        let zero = [0.0; BLOCK];
+        Self {
+            axes,
+            cofactor,
+            frame,
+            map,
+            reference,
+            x: [zero; 3],
+            w: [zero; 3],
+            mapped: [Vec3::zeros(); BLOCK],
+            flux: [zero; 3],
+            moment: [zero; 3],
+            gradient: [zero; 3],
+            acceleration: [zero; 3],
+            energy: zero,
+            size_potential: zero,
+            size_flux: zero,
+            size_moment: zero,
+            size_energy: zero,
+            size_acceleration: zero,
+        }
+    }
+
+    /// The block's nodes: $\mathbf s = F\mathbf d$, $\mathbf x = \mathrm{diag}(a, b, c)\\,\mathbf s$,
+    /// $\mathbf W = w\\,\mathrm{diag}(bc, ac, ab)\\,\mathbf s$, $\mathbf r\_Y = M\mathbf x + \mathbf t$.
+    #[inline(always)]
+    fn nodes(&mut self, d: &GridBlock) {
+        let (f, m, t) = (&self.frame, &self.map.rotation, &self.map.offset);
+        let (axes, cofactor) = (&self.axes, &self.cofactor);
+        for k in 0..BLOCK {
+            let (dx, dy, dz) = (d.x[k], d.y[k], d.z[k]);
+            let sx = f[(0, 0)] * dx + f[(0, 1)] * dy + f[(0, 2)] * dz;
+            let sy = f[(1, 0)] * dx + f[(1, 1)] * dy + f[(1, 2)] * dz;
+            let sz = f[(2, 0)] * dx + f[(2, 1)] * dy + f[(2, 2)] * dz;
+            let (px, py, pz) = (axes.x * sx, axes.y * sy, axes.z * sz);
+            self.x[0][k] = px;
+            self.x[1][k] = py;
+            self.x[2][k] = pz;
+            self.w[0][k] = cofactor.x * sx * d.weight[k];
+            self.w[1][k] = cofactor.y * sy * d.weight[k];
+            self.w[2][k] = cofactor.z * sz * d.weight[k];
+            self.mapped[k] = Vec3::new(
+                m[(0, 0)] * px + m[(0, 1)] * py + m[(0, 2)] * pz + t.x,
+                m[(1, 0)] * px + m[(1, 1)] * py + m[(1, 2)] * pz + t.y,
+                m[(2, 0)] * px + m[(2, 1)] * py + m[(2, 2)] * pz + t.z,
+            );
+        }
+    }
+
+    /// [`NodeLanes::nodes`] compiled with AVX.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn nodes_avx(&mut self, d: &GridBlock) {
+        self.nodes(d);
+    }
+
+    /// Each node's terms (those of [`add_solid_node`](super::kernel::add_solid_node), the
+    /// same operations in the same order), from the block's fields.
+    #[inline(always)]
+    fn terms<const FAR: bool, const FULL: bool>(&mut self, fields: &[Field; BLOCK]) {
+        let m = &self.map.rotation;
+        for (k, field) in fields.iter().enumerate() {
+            let phi = field.potential;
+            let (xx, xy, xz) = (self.x[0][k], self.x[1][k], self.x[2][k]);
+            let (wx, wy, wz) = (self.w[0][k], self.w[1][k], self.w[2][k]);
+            let w_norm = (wx * wx + wy * wy + wz * wz).sqrt();
+            let relative = phi - self.reference;
+            self.size_potential[k] = phi.abs() * w_norm;
+            self.flux[0][k] = wx * relative;
+            self.flux[1][k] = wy * relative;
+            self.flux[2][k] = wz * relative;
+            self.size_flux[k] = relative.abs() * w_norm;
+            if FULL || FAR {
+                // a = Mᵀ g: the acceleration in X's frame.
+                let g = &field.acceleration;
+                let ax = m[(0, 0)] * g.x + m[(1, 0)] * g.y + m[(2, 0)] * g.z;
+                let ay = m[(0, 1)] * g.x + m[(1, 1)] * g.y + m[(2, 1)] * g.z;
+                let az = m[(0, 2)] * g.x + m[(1, 2)] * g.y + m[(2, 2)] * g.z;
+                let a_dot_w = ax * wx + ay * wy + az * wz;
+                if FAR {
+                    self.acceleration[0][k] = xx * a_dot_w;
+                    self.acceleration[1][k] = xy * a_dot_w;
+                    self.acceleration[2][k] = xz * a_dot_w;
+                    let x_norm = (xx * xx + xy * xy + xz * xz).sqrt();
+                    self.size_acceleration[k] = x_norm * a_dot_w.abs();
+                }
+                if FULL {
+                    let half_x2 = 0.5 * (xx * xx + xy * xy + xz * xz);
+                    let x_dot_w = xx * wx + xy * wy + xz * wz;
+                    let (mx, my, mz) = (xy * wz - xz * wy, xz * wx - xx * wz, xx * wy - xy * wx);
+                    let moment_norm = (mx * mx + my * my + mz * mz).sqrt();
+                    let (e_potential, e_gradient) = (phi * x_dot_w, half_x2 * a_dot_w);
+                    self.moment[0][k] = mx * relative;
+                    self.moment[1][k] = my * relative;
+                    self.moment[2][k] = mz * relative;
+                    self.gradient[0][k] = (wy * az - wz * ay) * half_x2;
+                    self.gradient[1][k] = (wz * ax - wx * az) * half_x2;
+                    self.gradient[2][k] = (wx * ay - wy * ax) * half_x2;
+                    self.energy[k] = e_potential + e_gradient;
+                    self.size_moment[k] = relative.abs() * moment_norm;
+                    self.size_energy[k] = e_potential.abs() + e_gradient.abs();
+                }
+            }
+        }
+    }
+
+    /// [`NodeLanes::terms`] compiled with AVX.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn terms_avx<const FAR: bool, const FULL: bool>(&mut self, fields: &[Field; BLOCK]) {
+        self.terms::<FAR, FULL>(fields);
+    }
+
+    /// The first `n` nodes' terms added in node order: the block's sums, and the magnitudes
+    /// into `sizes`.
+    #[inline(always)]
+    fn sum<const FAR: bool, const FULL: bool>(
+        &self,
+        sizes: &mut super::kernel::SolidMagnitudes,
+        n: usize,
+    ) -> SolidBlock {
+        let mut block = SolidBlock::default();
+        for k in 0..n.min(BLOCK) {
+            sizes.potential += self.size_potential[k];
+            block.flux += Vec3::new(self.flux[0][k], self.flux[1][k], self.flux[2][k]);
+            sizes.flux += self.size_flux[k];
+            if FAR {
+                block.acceleration_flux += Vec3::new(
+                    self.acceleration[0][k],
+                    self.acceleration[1][k],
+                    self.acceleration[2][k],
+                );
+                sizes.acceleration += self.size_acceleration[k];
+            }
+            if FULL {
+                block.moment += Vec3::new(self.moment[0][k], self.moment[1][k], self.moment[2][k]);
+                block.gradient_moment += Vec3::new(
+                    self.gradient[0][k],
+                    self.gradient[1][k],
+                    self.gradient[2][k],
+                );
+                block.energy += self.energy[k];
+                sizes.moment += self.size_moment[k];
+                sizes.energy += self.size_energy[k];
+            }
+        }
+        block
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::{add_solid_node, NodeConstants, SolidMagnitudes, SolidTotals};
+    use nalgebra::{Rotation3, Vector3};
+    use surfgrav_potentials::{Ellipsoid, PointMass};
+
+    /// The node loop node by node through [`add_solid_node`] (the form before the loop went
+    /// by arrays): the reference for the bit-for-bit test.
+    fn node_by_node<P: Potential + ?Sized, const FAR: bool, const FULL: bool>(
+        e: &EllipsoidSurface,
+        grid: &SphereGrid,
+        aim: &Aim,
+        source: &P,
+        map: &FrameMap,
+    ) -> SolidSums {
+        let axes = e.semi_axes();
+        let cofactor = Vec3::new(axes.y * axes.z, axes.x * axes.z, axes.x * axes.y);
+        let mut totals = SolidTotals::new();
+        let mut sizes = SolidMagnitudes::default();
+        let reference = source.potential(&map.apply(&Vec3::zeros()));
+        for (d, n) in grid.blocks() {
+            let mut block = SolidBlock::default();
+            for k in 0..n {
+                let s = aim.frame * Vec3::new(d.x[k], d.y[k], d.z[k]);
+                let x = axes.component_mul(&s);
+                let w = cofactor.component_mul(&s) * d.weight[k];
+                let field = if FULL || FAR {
+                    source.field(&map.apply(&x))
+                } else {
+                    Field {
+                        potential: source.potential(&map.apply(&x)),
+                        acceleration: Vec3::zeros(),
+                    }
+                };
+                let constants = NodeConstants::new(x, &w);
+                add_solid_node::<FAR, FULL>(
+                    &mut block, &mut sizes, &field, map, &w, &constants, reference,
+                );
+            }
+            totals.add::<FULL>(&block);
+        }
+        totals.finish(&sizes)
+    }
+
+    fn bits(s: &SolidSums) -> Vec<u64> {
+        let v = [
+            s.potential_flux,
+            s.potential_moment,
+            s.gradient_moment,
+            s.acceleration_flux,
+        ];
+        v.iter()
+            .flat_map(|v| v.iter().map(|c| c.to_bits()).collect::<Vec<_>>())
+            .chain(
+                [
+                    s.energy_flux,
+                    s.potential_flux_magnitude,
+                    s.potential_moment_magnitude,
+                    s.energy_flux_magnitude,
+                    s.acceleration_flux_magnitude,
+                    s.potential_magnitude,
+                ]
+                .iter()
+                .map(|c| c.to_bits()),
+            )
+            .collect()
+    }
+
+    /// The array form of [`aimed_sums`] equals the node-by-node form bit for bit (every sum
+    /// and magnitude, all four variants), on grids whose last block is partial and full, for
+    /// an ellipsoid source (batched field) and a point mass, in a general pose.
+    #[test]
+    fn the_array_loop_equals_the_node_loop_bit_for_bit() -> Result<(), Box<dyn std::error::Error>> {
+        let e = EllipsoidSurface::new(1.3, 0.8, 0.5)?;
+        let frame = *Rotation3::new(Vector3::new(0.3, -1.1, 0.7)).matrix();
+        let map = FrameMap::new(
+            &Rotation3::new(Vector3::new(-0.4, 0.9, 2.1)),
+            &Vec3::new(2.9, -1.7, 0.6),
+        )?;
+        let ellipsoid = Ellipsoid::new(1.1, 0.7, 0.4, 2.0)?;
+        let point = PointMass::new(1.5)?;
+        // Only the aim's frame enters the sums: any aim, turned to a general frame.
+        let aimed = aim(&e, &Body::ellipsoid(ellipsoid)?, &map, 1e-12);
+        for (polar, azimuth, cluster) in [(7, 9, 0), (8, 16, 2), (13, 5, 4)] {
+            let grid = SphereGrid::new(polar, azimuth, cluster)?;
+            assert_eq!(grid.len(), polar * azimuth);
+            assert_eq!(
+                grid.blocks().map(|(_, n)| n).sum::<usize>(),
+                polar * azimuth
+            );
+            let aim = Aim { frame, ..aimed };
+            macro_rules! check {
+                ($source:expr) => {
+                    let (s, g) = ($source, &grid);
+                    assert_eq!(
+                        bits(&aimed_sums::<_, true, true>(&e, g, &aim, s, &map)),
+                        bits(&node_by_node::<_, true, true>(&e, g, &aim, s, &map))
+                    );
+                    assert_eq!(
+                        bits(&aimed_sums::<_, false, true>(&e, g, &aim, s, &map)),
+                        bits(&node_by_node::<_, false, true>(&e, g, &aim, s, &map))
+                    );
+                    assert_eq!(
+                        bits(&aimed_sums::<_, true, false>(&e, g, &aim, s, &map)),
+                        bits(&node_by_node::<_, true, false>(&e, g, &aim, s, &map))
+                    );
+                    assert_eq!(
+                        bits(&aimed_sums::<_, false, false>(&e, g, &aim, s, &map)),
+                        bits(&node_by_node::<_, false, false>(&e, g, &aim, s, &map))
+                    );
+                };
+            }
+            check!(&ellipsoid);
+            check!(&point);
+        }
+        Ok(())
+    }
 }
