@@ -11,10 +11,11 @@ use super::options::{
     Evaluation, ForceInteraction, Interaction, InteractionOptions, MethodChoice, Request,
 };
 use super::overlap::{check_centroids, contact, Contact};
+use super::rules::next_transverse;
 use super::rules::MAX_TRANSVERSE;
 use super::strategy::adaptive::Adaptive;
 use super::strategy::aimed_ladder::AimedLadder;
-use super::strategy::ladder::SingleLevel;
+use super::strategy::ladder::{growth, SingleLevel};
 use super::strategy::nested_doubling::NestedDoubling;
 use super::strategy::{Problem, Strategy};
 use super::surface_choice::choose_surface;
@@ -297,13 +298,15 @@ impl InteractionEngine {
             MethodChoice::FixedLevel(transverse) => SingleLevel { transverse }.refine(&problem),
             MethodChoice::FixedRules => self.ladder.refine(&problem),
             MethodChoice::Automatic => match self.ladder.refine(&problem) {
-                // The fallback: the ladder ran out of levels (not of budget, not into
-                // rounding); the adaptive rule gets the rest of the budget and the better
-                // result is kept. (Measured, the ladder is cheaper in every case tried, even
-                // 0.003 from a disk's rim, so this is a safety net.)
+                // The fallback: the ladder ran out of levels (its last level has no step
+                // left below the top; not out of budget, not into rounding); the adaptive
+                // rule gets the rest of the budget and the better result is kept. (Measured,
+                // the ladder is cheaper in every case tried, even 0.003 from a disk's rim, so
+                // this is a safety net; two parallel disks 0.02 apart are one it catches.)
                 Err(InteractionError::ToleranceNotMet { best, .. })
-                    if best.level == Some(MAX_TRANSVERSE)
-                        && budget - best.evaluations >= MINIMUM_EVALUATION_BUDGET =>
+                    if best.level.is_some_and(|level| {
+                        next_transverse(level, growth(&self.options)) > MAX_TRANSVERSE
+                    }) && budget - best.evaluations >= MINIMUM_EVALUATION_BUDGET =>
                 {
                     let rest = Problem {
                         budget: budget - best.evaluations,
