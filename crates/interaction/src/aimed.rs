@@ -772,6 +772,20 @@ pub(crate) fn aimed_sums<P: Potential + ?Sized, const FAR: bool, const FULL: boo
     let avx = std::arch::is_x86_feature_detected!("avx");
     #[cfg(not(target_arch = "x86_64"))]
     let avx = false;
+    aimed_sums_lanes::<P, FAR, FULL>(e, grid, aim, source, map, avx)
+}
+
+/// [`aimed_sums`] with the lane passes compiled with AVX (`avx`, which the CPU must then
+/// support) or without.
+#[inline(always)]
+fn aimed_sums_lanes<P: Potential + ?Sized, const FAR: bool, const FULL: bool>(
+    e: &EllipsoidSurface,
+    grid: &SphereGrid,
+    aim: &Aim,
+    source: &P,
+    map: &FrameMap,
+    avx: bool,
+) -> SolidSums {
     let axes = e.semi_axes();
     let mut lanes = NodeLanes::new(
         axes,
@@ -789,7 +803,7 @@ pub(crate) fn aimed_sums<P: Potential + ?Sized, const FAR: bool, const FULL: boo
     }; BLOCK];
     for (d, n) in grid.blocks() {
         if avx {
-            // SAFETY: AVX was detected on this CPU (std caches the answer).
+            // SAFETY: `avx` only where AVX was detected on this CPU (std caches the answer).
             #[cfg(target_arch = "x86_64")]
             unsafe {
                 lanes.nodes_avx(d)
@@ -1101,6 +1115,35 @@ mod tests {
                 polar * azimuth
             );
             let aim = Aim { frame, ..aimed };
+            #[cfg(target_arch = "x86_64")]
+            let avx = std::arch::is_x86_feature_detected!("avx");
+            #[cfg(not(target_arch = "x86_64"))]
+            let avx = false;
+            // Without AVX too, where the CPU has it (the plain lane passes).
+            let plain = |s: &dyn Potential, far: bool, full: bool| match (far, full) {
+                (true, true) => aimed_sums_lanes::<_, true, true>(&e, &grid, &aim, s, &map, false),
+                (false, true) => {
+                    aimed_sums_lanes::<_, false, true>(&e, &grid, &aim, s, &map, false)
+                }
+                (true, false) => {
+                    aimed_sums_lanes::<_, true, false>(&e, &grid, &aim, s, &map, false)
+                }
+                (false, false) => {
+                    aimed_sums_lanes::<_, false, false>(&e, &grid, &aim, s, &map, false)
+                }
+            };
+            for far in [false, true] {
+                for full in [false, true] {
+                    let s: &dyn Potential = &ellipsoid;
+                    let reference = match (far, full) {
+                        (true, true) => node_by_node::<_, true, true>(&e, &grid, &aim, s, &map),
+                        (false, true) => node_by_node::<_, false, true>(&e, &grid, &aim, s, &map),
+                        (true, false) => node_by_node::<_, true, false>(&e, &grid, &aim, s, &map),
+                        (false, false) => node_by_node::<_, false, false>(&e, &grid, &aim, s, &map),
+                    };
+                    assert_eq!(bits(&plain(s, far, full)), bits(&reference), "avx {avx}");
+                }
+            }
             macro_rules! check {
                 ($source:expr) => {
                     let (s, g) = ($source, &grid);
