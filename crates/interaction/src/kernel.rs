@@ -262,46 +262,88 @@ pub(crate) struct SolidBlock {
 
 /// The compensated totals of [`SolidBlock`]s over a table: every solid loop adds its blocks
 /// here and finishes with the sizes (`FULL`: torques and energy too, otherwise the force parts).
+///
+/// Neumaier's compensated sums ([`CompensatedSum`], the same operations, so the same bits),
+/// kept side by side in arrays with the branch on the larger magnitude replaced by a selection
+/// between both corrections: the sums of one block are added together, without a branch
+/// that the signs of the sums make unpredictable.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct SolidTotals {
-    flux: CompensatedSum3,
-    moment: CompensatedSum3,
-    gradient_moment: CompensatedSum3,
-    energy: CompensatedSum,
-    acceleration_flux: CompensatedSum3,
+    /// Flux x, y, z, acceleration flux x, y, z.
+    force: Neumaier<6>,
+    /// Moment x, y, z, gradient moment x, y, z, energy.
+    full: Neumaier<7>,
+}
+
+/// `N` compensated sums side by side (Neumaier's, as [`CompensatedSum`]).
+#[derive(Debug, Clone, Copy)]
+struct Neumaier<const N: usize> {
+    sum: [Real; N],
+    compensation: [Real; N],
+}
+
+impl<const N: usize> Neumaier<N> {
+    fn new() -> Self {
+        Self {
+            sum: [0.0; N],
+            compensation: [0.0; N],
+        }
+    }
+
+    /// Adds `x[i]` to sum `i`: [`CompensatedSum::add`] with both corrections computed and the
+    /// one for the larger magnitude kept.
+    #[inline(always)]
+    fn add(&mut self, x: &[Real; N]) {
+        for i in 0..N {
+            let (s, x) = (self.sum[i], x[i]);
+            let t = s + x;
+            let (big, small) = ((s - t) + x, (x - t) + s);
+            self.compensation[i] += if s.abs() >= x.abs() { big } else { small };
+            self.sum[i] = t;
+        }
+    }
+
+    /// Sum `i`: [`CompensatedSum::value`].
+    fn value(&self, i: usize) -> Real {
+        self.sum[i] + self.compensation[i]
+    }
+
+    fn vector(&self, first: usize) -> Vec3 {
+        Vec3::new(
+            self.value(first),
+            self.value(first + 1),
+            self.value(first + 2),
+        )
+    }
 }
 
 impl SolidTotals {
     pub(crate) fn new() -> Self {
         Self {
-            flux: CompensatedSum3::new(),
-            moment: CompensatedSum3::new(),
-            gradient_moment: CompensatedSum3::new(),
-            energy: CompensatedSum::new(),
-            acceleration_flux: CompensatedSum3::new(),
+            force: Neumaier::new(),
+            full: Neumaier::new(),
         }
     }
 
     /// Adds one block's plain sums.
     #[inline(always)]
     pub(crate) fn add<const FULL: bool>(&mut self, block: &SolidBlock) {
-        self.flux.add(&block.flux);
+        let (f, a) = (&block.flux, &block.acceleration_flux);
+        self.force.add(&[f.x, f.y, f.z, a.x, a.y, a.z]);
         if FULL {
-            self.moment.add(&block.moment);
-            self.gradient_moment.add(&block.gradient_moment);
-            self.energy.add(block.energy);
+            let (m, g) = (&block.moment, &block.gradient_moment);
+            self.full.add(&[m.x, m.y, m.z, g.x, g.y, g.z, block.energy]);
         }
-        self.acceleration_flux.add(&block.acceleration_flux);
     }
 
     /// The sums, with the magnitudes gathered along the loop.
     pub(crate) fn finish(&self, sizes: &SolidMagnitudes) -> SolidSums {
         sizes.sums(
-            self.flux.value(),
-            self.moment.value(),
-            self.gradient_moment.value(),
-            self.energy.value(),
-            self.acceleration_flux.value(),
+            self.force.vector(0),
+            self.full.vector(0),
+            self.full.vector(3),
+            self.full.value(6),
+            self.force.vector(3),
         )
     }
 }
@@ -889,5 +931,51 @@ mod tests {
         let table = solid_table_sums::<_, false, true>(&SolidTable::new(nodes), &source, &map);
         assert_eq!(generic, table);
         assert!(generic.energy_flux < 0.0 && generic.potential_moment_magnitude > 0.0);
+    }
+
+    /// [`SolidTotals`] (side by side, a selection for Neumaier's branch) equals
+    /// [`CompensatedSum`] bit for bit: blocks of magnitudes from 1e-20 to 1e20 and both signs,
+    /// so that both corrections are taken and large terms cancel; it fails when the selection
+    /// keeps the wrong correction.
+    #[test]
+    fn the_totals_are_the_compensated_sums_bit_for_bit() {
+        let mut state = 17;
+        let mut totals = SolidTotals::new();
+        let mut reference = [CompensatedSum::new(); 13];
+        let term = |state: &mut u64| next(state) * Real::powi(10.0, (next(state) * 20.0) as i32);
+        for _ in 0..2_000 {
+            let block = SolidBlock {
+                flux: Vec3::new(term(&mut state), term(&mut state), term(&mut state)),
+                moment: Vec3::new(term(&mut state), term(&mut state), term(&mut state)),
+                gradient_moment: Vec3::new(term(&mut state), term(&mut state), term(&mut state)),
+                energy: term(&mut state),
+                acceleration_flux: Vec3::new(term(&mut state), term(&mut state), term(&mut state)),
+            };
+            totals.add::<true>(&block);
+            let parts = [
+                block.flux.as_slice(),
+                block.moment.as_slice(),
+                block.gradient_moment.as_slice(),
+                &[block.energy],
+                block.acceleration_flux.as_slice(),
+            ];
+            for (sum, &x) in reference
+                .iter_mut()
+                .zip(parts.iter().flat_map(|p| p.iter()))
+            {
+                sum.add(x);
+            }
+        }
+        let s = totals.finish(&SolidMagnitudes::default());
+        let values = [
+            s.potential_flux.as_slice(),
+            s.potential_moment.as_slice(),
+            s.gradient_moment.as_slice(),
+            &[s.energy_flux],
+            s.acceleration_flux.as_slice(),
+        ];
+        for (sum, &value) in reference.iter().zip(values.iter().flat_map(|p| p.iter())) {
+            assert_eq!(sum.value().to_bits(), value.to_bits());
+        }
     }
 }
