@@ -643,7 +643,7 @@ pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Rea
         let set = singular_set(y);
         let singular = map.back(&(set.nearest(&map.apply(&x_point)) - map.offset));
         let exact = offset <= COAXIAL_TOLERANCE * distance;
-        (exact || offset <= NEAR_AXIS * (singular - x_point).norm())
+        (exact || offset <= NEAR_AXIS * (singular - x_point).norm().min(axes.x))
             .then_some((x_point, singular, exact))
     });
     let (coaxial, near_axis) = match on_axis {

@@ -223,3 +223,28 @@ fn a_clamped_top_level_does_not_certify() {
     // The fallback certifies (measured: the adaptive cubature after the ladder's levels).
     assert!(certified, "estimate {:.2e}", result.error_estimate);
 }
+
+/// Parallel axes far apart, the other body up to 40° off the axis (the x–z orbit of two flat
+/// spheroids in `cli_rotation`): every pose certifies. With the pole kept on the axis for
+/// offsets up to half the distance to the other's singular set alone, 8 azimuths at two
+/// successive levels hid the azimuthal error from the level change (the two torque forms
+/// caught it: not met, estimates 1.0e-12 to 1.7e-11, at 19° to 26° and distance 5); the
+/// offset is now also bounded by half X's equatorial radius.
+#[test]
+fn parallel_axes_far_apart_certify_in_every_direction() {
+    let a = Body::spheroid(Spheroid::new(1.0, 0.25, 1.0).unwrap()).unwrap();
+    let mut engine = InteractionEngine::default();
+    for distance in [2.0, 3.25, 5.0] {
+        for degrees in 0..=40 {
+            let theta = f64::from(degrees).to_radians();
+            let pose_b = Pose::from_position_rotation(
+                Vec3::new(distance * theta.sin(), 0.0, distance * theta.cos()),
+                UnitQuaternion::identity(),
+            );
+            let result = engine
+                .interact(&a, &Pose::identity(), &a, &pose_b)
+                .unwrap_or_else(|e| panic!("distance {distance}, {degrees}°: {e}"));
+            assert!(result.error_estimate <= TOLERANCE);
+        }
+    }
+}
