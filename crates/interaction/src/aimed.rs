@@ -223,17 +223,19 @@ const PRODUCT_AZIMUTH_RATIO: Real = 0.75;
 /// product rule. Measured with the example `near_axis_sweep` (80 random near-axial pairs per
 /// seed: spheroids and disks of random sizes and aspects on parallel axes, axial gaps 0.02 to
 /// 1, lateral offsets 0 to 0.75, turned about the axis or flipped; certified 1e-12 and checked
-/// against the independent reference), seeds 2026, 7 and 99: no estimate exceeded, 198,592
-/// evaluations against 252,916 with the general rule (seed by seed 59,274/69,688/69,630
-/// against 83,144/86,628/83,144); with 0.35, 177,538, but two true errors 1.4 times their
-/// estimates.
+/// against the independent reference), seeds 7 and 99: no estimate exceeded, 70,780 and
+/// 71,466 evaluations against 86,628 and 83,144 with the general rule; with 0.35 fewer, but
+/// true errors up to 1.4 times their estimates (seeds 2026 and 99).
 const NEAR_AXIS_AZIMUTH_RATIO: Real = 0.5;
 
-/// The largest lateral offset of Y's centroid from X's axis, relative to the distance from
-/// the pole on the axis to Y's singular set, for which the pole stays on the axis: a prolate
-/// pair at gap 0.1 with offsets 0.3 and 0.5 (1.3 and 2.2 times that distance) took 1,836 and
-/// 2,396 evaluations with the axis pole against 724 and 758 with the general one; at offsets
-/// up to 0.43 times that distance the axis pole was the cheaper everywhere measured.
+/// The largest lateral offset of Y's centroid from X's axis, relative to the smaller of the
+/// distance from the pole on the axis to Y's singular set and X's equatorial semi-axis, for
+/// which the pole stays on the axis. The distance: a prolate pair at gap 0.1 with offsets 0.3
+/// and 0.5 (1.3 and 2.2 times it) took 1,836 and 2,396 evaluations with the axis pole against
+/// 724 and 758 with the general one. The semi-axis: far apart, the distance alone let the
+/// pole stay on the axis with Y 19 to 26 degrees off it (two flat spheroids 5 apart), where
+/// 8 azimuths at two successive levels hid the azimuthal error from the level change (the
+/// two torque forms caught it: not certified); the test `coaxial.rs` sweeps 0 to 40 degrees.
 const NEAR_AXIS: Real = 0.5;
 
 /// Azimuth nodes per polar node of a level (clustered, or [`PRODUCT_AZIMUTH_RATIO`]).
