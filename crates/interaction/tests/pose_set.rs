@@ -118,7 +118,10 @@ fn far_disks_start_at_the_level_their_rim_asks_for() {
     let cases = pose_set(12, &[0.05, 0.2, 1.0, 5.0], 4);
     let mut engine = InteractionEngine::default();
     let mut checked = 0;
-    for case in cases.iter().filter(|c| c.label.starts_with("disk-disk gap 5 ")) {
+    for case in cases
+        .iter()
+        .filter(|c| c.label.starts_with("disk-disk gap 5 "))
+    {
         let result = engine
             .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
             .unwrap_or_else(|e| panic!("{}: {e}", case.label));
