@@ -319,86 +319,6 @@ impl UniformDisk {
         }
     }
 
-    /// The fields at `points` into `out`: [`LANES`] points at a time, whose elliptic integrals
-    /// ([`gauss_lanes`]) iterate side by side; each result bit for bit [`Potential::field`]'s.
-    #[inline(always)]
-    fn batch<T>(&self, points: &[Vec3], out: &mut [T], pick: impl Fn(Field) -> T) {
-        let n = points.len().min(out.len());
-        let (points, out) = (&points[..n], &mut out[..n]);
-        for (chunk, target) in points.chunks(LANES).zip(out.chunks_mut(LANES)) {
-            let mut near = [None; LANES];
-            let mut far = [None; LANES];
-            for (l, r) in chunk.iter().enumerate() {
-                let rho = hypot(r.x, r.y);
-                let dist = hypot(rho, r.z);
-                if dist >= FAR_FIELD_RADII * self.radius {
-                    far[l] = Some((*r, dist));
-                } else {
-                    near[l] = Some(self.near_point(r, rho));
-                }
-            }
-            if far.iter().any(Option::is_some) {
-                let fields = self.far_field_lanes(&far);
-                for (l, point) in far.iter().enumerate() {
-                    if point.is_some() {
-                        target[l] = pick(fields[l]);
-                    }
-                }
-            }
-            if near.iter().all(Option::is_none) {
-                continue;
-            }
-            let kc = F4(std::array::from_fn(|l| {
-                near[l].as_ref().map_or(1.0, |p| p.kc)
-            }));
-            let snc = F4(std::array::from_fn(|l| {
-                near[l].as_ref().map_or(1.0, |p| p.snc)
-            }));
-            let want_pi = M4::from_flags(std::array::from_fn(|l| {
-                near[l].as_ref().is_some_and(|p| p.use_pi_track)
-            }));
-            let g = gauss_lanes(kc, snc, want_pi);
-            for (l, point) in near.iter().enumerate() {
-                if let Some(point) = point {
-                    target[l] = pick(self.near_finish(point, &g[l]));
-                }
-            }
-        }
-    }
-
-    /// [`UniformDisk::batch`] compiled without extra target features.
-    fn fields_plain(&self, points: &[Vec3], out: &mut [Field]) {
-        self.batch(points, out, |f| f);
-    }
-
-    /// [`UniformDisk::fields_plain`] for potentials only.
-    fn potentials_plain(&self, points: &[Vec3], out: &mut [Real]) {
-        self.batch(points, out, |f| f.potential);
-    }
-
-    /// [`UniformDisk::batch`] compiled with AVX (four lanes per register; no FMA, so every
-    /// operation rounds as in the scalar code).
-    ///
-    /// # Safety
-    ///
-    /// The CPU must support AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn fields_avx(&self, points: &[Vec3], out: &mut [Field]) {
-        self.batch(points, out, |f| f);
-    }
-
-    /// [`UniformDisk::fields_avx`] for potentials only.
-    ///
-    /// # Safety
-    ///
-    /// The CPU must support AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn potentials_avx(&self, points: &[Vec3], out: &mut [Real]) {
-        self.batch(points, out, |f| f.potential);
-    }
-
     /// [`UniformDisk::far_field`] for up to [`LANES`] points (`Some((point, dist))`) side by
     /// side: the same terms in the same order, each lane's sums frozen once its own series
     /// has stopped; the entries of the `None` lanes are meaningless.
@@ -519,6 +439,55 @@ struct NearPoint {
     use_pi_track: bool,
 }
 
+impl crate::lanes::Batched for UniformDisk {
+    /// The fields at `points` into `out`: [`LANES`] points at a time, whose elliptic integrals
+    /// ([`gauss_lanes`]) iterate side by side; each result bit for bit [`Potential::field`]'s.
+    #[inline(always)]
+    fn batch<T>(&self, points: &[Vec3], out: &mut [T], pick: impl Fn(Field) -> T) {
+        let n = points.len().min(out.len());
+        let (points, out) = (&points[..n], &mut out[..n]);
+        for (chunk, target) in points.chunks(LANES).zip(out.chunks_mut(LANES)) {
+            let mut near = [None; LANES];
+            let mut far = [None; LANES];
+            for (l, r) in chunk.iter().enumerate() {
+                let rho = hypot(r.x, r.y);
+                let dist = hypot(rho, r.z);
+                if dist >= FAR_FIELD_RADII * self.radius {
+                    far[l] = Some((*r, dist));
+                } else {
+                    near[l] = Some(self.near_point(r, rho));
+                }
+            }
+            if far.iter().any(Option::is_some) {
+                let fields = self.far_field_lanes(&far);
+                for (l, point) in far.iter().enumerate() {
+                    if point.is_some() {
+                        target[l] = pick(fields[l]);
+                    }
+                }
+            }
+            if near.iter().all(Option::is_none) {
+                continue;
+            }
+            let kc = F4(std::array::from_fn(|l| {
+                near[l].as_ref().map_or(1.0, |p| p.kc)
+            }));
+            let snc = F4(std::array::from_fn(|l| {
+                near[l].as_ref().map_or(1.0, |p| p.snc)
+            }));
+            let want_pi = M4::from_flags(std::array::from_fn(|l| {
+                near[l].as_ref().is_some_and(|p| p.use_pi_track)
+            }));
+            let g = gauss_lanes(kc, snc, want_pi);
+            for (l, point) in near.iter().enumerate() {
+                if let Some(point) = point {
+                    target[l] = pick(self.near_finish(point, &g[l]));
+                }
+            }
+        }
+    }
+}
+
 impl Potential for UniformDisk {
     fn as_typed(&self) -> crate::TypedPotential<'_> {
         crate::TypedPotential::Disk(self)
@@ -557,24 +526,12 @@ impl Potential for UniformDisk {
     /// Four points at a time, the elliptic integrals of the near ones iterated side by side
     /// (AVX where the CPU has it), each result bit for bit [`Potential::field`]'s.
     fn fields_into(&self, points: &[Vec3], out: &mut [Field]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx") {
-            // SAFETY: AVX was just detected on this CPU (std caches the answer).
-            unsafe { self.fields_avx(points, out) };
-            return;
-        }
-        self.fields_plain(points, out);
+        crate::lanes::fields_into(self, points, out);
     }
 
     /// As [`Potential::fields_into`], keeping the potentials.
     fn potentials_into(&self, points: &[Vec3], out: &mut [Real]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx") {
-            // SAFETY: AVX was just detected on this CPU (std caches the answer).
-            unsafe { self.potentials_avx(points, out) };
-            return;
-        }
-        self.potentials_plain(points, out);
+        crate::lanes::potentials_into(self, points, out);
     }
 
     fn field(&self, r: &Vec3) -> Field {
@@ -758,7 +715,7 @@ mod tests {
                 let mut out = vec![blank; points.len()];
                 disk.fields_into(points, &mut out);
                 runs.push(("fields_into", out.clone()));
-                disk.fields_plain(points, &mut out);
+                crate::lanes::fields_plain(&disk, points, &mut out);
                 runs.push(("fields_plain", out.clone()));
                 let mut potentials = vec![0.0; points.len()];
                 disk.potentials_into(points, &mut potentials);

@@ -271,75 +271,11 @@ impl ScaledEllipsoid {
 }
 
 impl Ellipsoid {
-    /// The batched field: [`LANES`] points at a time through [`Ellipsoid::field_lanes`], the
-    /// remainder point by point; `pick` keeps what the caller stores.
-    #[inline(always)]
-    fn batch<T>(&self, points: &[Vec3], out: &mut [T], pick: impl Fn(Field) -> T) {
-        let n = points.len().min(out.len());
-        let (points, out) = (&points[..n], &mut out[..n]);
-        let mut point_chunks = points.chunks_exact(LANES);
-        let mut out_chunks = out.chunks_exact_mut(LANES);
-        for (chunk, target) in (&mut point_chunks).zip(&mut out_chunks) {
-            let (fields, taken) = self.field_lanes([chunk[0], chunk[1], chunk[2], chunk[3]]);
-            // Stored unconditionally first: a store per taken lane only would invite the
-            // compiler to sink the lane arithmetic into four scalar branches.
-            for (slot, field) in target.iter_mut().zip(fields) {
-                *slot = pick(field);
-            }
-            for l in 0..LANES {
-                if !taken[l] {
-                    target[l] = pick(self.field_outlined(&chunk[l]));
-                }
-            }
-        }
-        for (r, slot) in point_chunks
-            .remainder()
-            .iter()
-            .zip(out_chunks.into_remainder())
-        {
-            *slot = pick(self.field_outlined(r));
-        }
-    }
-
     /// [`Potential::field`] kept out of line, so that the lane code it would otherwise be
     /// inlined beside stays small enough for the compiler to vectorise whole.
     #[inline(never)]
     fn field_outlined(&self, r: &Vec3) -> Field {
         self.field(r)
-    }
-
-    /// [`Ellipsoid::batch`] compiled without extra target features (any x86_64, and the only
-    /// instantiation elsewhere).
-    fn fields_plain(&self, points: &[Vec3], out: &mut [Field]) {
-        self.batch(points, out, |f| f);
-    }
-
-    /// [`Ellipsoid::fields_plain`] for potentials only.
-    fn potentials_plain(&self, points: &[Vec3], out: &mut [Real]) {
-        self.batch(points, out, |f| f.potential);
-    }
-
-    /// [`Ellipsoid::batch`] compiled with AVX (four f64 lanes per register; no FMA, so every
-    /// operation rounds as in the scalar code).
-    ///
-    /// # Safety
-    ///
-    /// The CPU must support AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn fields_avx(&self, points: &[Vec3], out: &mut [Field]) {
-        self.batch(points, out, |f| f);
-    }
-
-    /// [`Ellipsoid::fields_avx`] for potentials only.
-    ///
-    /// # Safety
-    ///
-    /// The CPU must support AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn potentials_avx(&self, points: &[Vec3], out: &mut [Real]) {
-        self.batch(points, out, |f| f.potential);
     }
 
     /// The fields at [`LANES`] points, each bit for bit [`Potential::field`]'s where the lane
@@ -485,6 +421,38 @@ pub(crate) fn nearest_power_of_two(v: Real) -> Real {
     Real::powi(2.0, half) * Real::powi(2.0, exponent - half)
 }
 
+impl crate::lanes::Batched for Ellipsoid {
+    /// The batched field: [`LANES`] points at a time through [`Ellipsoid::field_lanes`], the
+    /// remainder point by point; `pick` keeps what the caller stores.
+    #[inline(always)]
+    fn batch<T>(&self, points: &[Vec3], out: &mut [T], pick: impl Fn(Field) -> T) {
+        let n = points.len().min(out.len());
+        let (points, out) = (&points[..n], &mut out[..n]);
+        let mut point_chunks = points.chunks_exact(LANES);
+        let mut out_chunks = out.chunks_exact_mut(LANES);
+        for (chunk, target) in (&mut point_chunks).zip(&mut out_chunks) {
+            let (fields, taken) = self.field_lanes([chunk[0], chunk[1], chunk[2], chunk[3]]);
+            // Stored unconditionally first: a store per taken lane only would invite the
+            // compiler to sink the lane arithmetic into four scalar branches.
+            for (slot, field) in target.iter_mut().zip(fields) {
+                *slot = pick(field);
+            }
+            for l in 0..LANES {
+                if !taken[l] {
+                    target[l] = pick(self.field_outlined(&chunk[l]));
+                }
+            }
+        }
+        for (r, slot) in point_chunks
+            .remainder()
+            .iter()
+            .zip(out_chunks.into_remainder())
+        {
+            *slot = pick(self.field_outlined(r));
+        }
+    }
+}
+
 impl Potential for Ellipsoid {
     fn as_typed(&self) -> crate::TypedPotential<'_> {
         crate::TypedPotential::Ellipsoid(self)
@@ -566,24 +534,12 @@ impl Potential for Ellipsoid {
     /// Four points at a time through one lane-interleaved evaluation (AVX where the CPU has it),
     /// each result bit for bit [`Potential::field`]'s.
     fn fields_into(&self, points: &[Vec3], out: &mut [Field]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx") {
-            // SAFETY: AVX was just detected on this CPU (std caches the answer).
-            unsafe { self.fields_avx(points, out) };
-            return;
-        }
-        self.fields_plain(points, out);
+        crate::lanes::fields_into(self, points, out);
     }
 
     /// As [`Potential::fields_into`], keeping the potentials.
     fn potentials_into(&self, points: &[Vec3], out: &mut [Real]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx") {
-            // SAFETY: AVX was just detected on this CPU (std caches the answer).
-            unsafe { self.potentials_avx(points, out) };
-            return;
-        }
-        self.potentials_plain(points, out);
+        crate::lanes::potentials_into(self, points, out);
     }
 }
 
@@ -869,12 +825,12 @@ mod tests {
             };
             let mut runs: Vec<(&str, Vec<Field>)> = Vec::new();
             let mut out = vec![placeholder; points.len()];
-            body.fields_plain(&points, &mut out);
+            crate::lanes::fields_plain(&body, &points, &mut out);
             runs.push(("plain", out.clone()));
             #[cfg(target_arch = "x86_64")]
             if std::arch::is_x86_feature_detected!("avx") {
                 // SAFETY: AVX detected just above.
-                unsafe { body.fields_avx(&points, &mut out) };
+                unsafe { crate::lanes::fields_avx(&body, &points, &mut out) };
                 runs.push(("avx", out.clone()));
             }
             body.fields_into(&points, &mut out);

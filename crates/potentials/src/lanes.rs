@@ -7,6 +7,7 @@
 //! FMA is enabled anywhere), so a lane's result is bit for bit the scalar code's when the same
 //! operations are applied in the same order.
 
+use crate::{Field, Real, Vec3};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// Number of lanes.
@@ -206,6 +207,71 @@ impl Neg for F4 {
     fn neg(self) -> F4 {
         self.map(|a| -a)
     }
+}
+
+/// A field that evaluates up to [`LANES`] points side by side: `batch` stores `pick` of each
+/// point's field, bit for bit [`Potential::field`](crate::Potential::field)'s. The entry points
+/// below compile it once without extra target features and once with AVX (four lanes per
+/// register; no FMA, so every operation rounds as in the scalar code), and
+/// [`fields_into`] / [`potentials_into`] take the second where the CPU has AVX.
+pub(crate) trait Batched {
+    /// `pick` of the field at each of `points`, into `out` (the shorter of the two).
+    fn batch<T>(&self, points: &[Vec3], out: &mut [T], pick: impl Fn(Field) -> T);
+}
+
+/// [`Batched::batch`] compiled without extra target features (any x86_64, and the only
+/// instantiation elsewhere).
+pub(crate) fn fields_plain<B: Batched>(body: &B, points: &[Vec3], out: &mut [Field]) {
+    body.batch(points, out, |f| f);
+}
+
+/// [`fields_plain`] for potentials only.
+fn potentials_plain<B: Batched>(body: &B, points: &[Vec3], out: &mut [Real]) {
+    body.batch(points, out, |f| f.potential);
+}
+
+/// [`Batched::batch`] compiled with AVX.
+///
+/// # Safety
+///
+/// The CPU must support AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+pub(crate) unsafe fn fields_avx<B: Batched>(body: &B, points: &[Vec3], out: &mut [Field]) {
+    body.batch(points, out, |f| f);
+}
+
+/// [`fields_avx`] for potentials only.
+///
+/// # Safety
+///
+/// The CPU must support AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+unsafe fn potentials_avx<B: Batched>(body: &B, points: &[Vec3], out: &mut [Real]) {
+    body.batch(points, out, |f| f.potential);
+}
+
+/// The fields at `points`, four at a time (AVX where the CPU has it).
+pub(crate) fn fields_into<B: Batched>(body: &B, points: &[Vec3], out: &mut [Field]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx") {
+        // SAFETY: AVX was just detected on this CPU (std caches the answer).
+        unsafe { fields_avx(body, points, out) };
+        return;
+    }
+    fields_plain(body, points, out);
+}
+
+/// The potentials at `points`, four at a time (AVX where the CPU has it).
+pub(crate) fn potentials_into<B: Batched>(body: &B, points: &[Vec3], out: &mut [Real]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx") {
+        // SAFETY: as above.
+        unsafe { potentials_avx(body, points, out) };
+        return;
+    }
+    potentials_plain(body, points, out);
 }
 
 #[cfg(test)]

@@ -569,6 +569,29 @@ impl Spheroid {
         (fields, taken)
     }
 
+    /// [`Potential::field`] kept out of line, beside the lane code.
+    #[inline(never)]
+    fn field_outlined(&self, r: &Vec3) -> Field {
+        self.field(r)
+    }
+}
+
+/// [`estrin16`] lane by lane.
+#[inline(always)]
+fn estrin16_lanes(x: F4, c: &[Real]) -> F4 {
+    let coefficient = |i: usize| c.get(i).copied().unwrap_or(0.0);
+    let v: [F4; 8] = std::array::from_fn(|i| coefficient(2 * i) + coefficient(2 * i + 1) * x);
+    let x2 = x * x;
+    let x4 = x2 * x2;
+    let x8 = x4 * x4;
+    let v01 = v[0] + v[1] * x2;
+    let v23 = v[2] + v[3] * x2;
+    let v45 = v[4] + v[5] * x2;
+    let v67 = v[6] + v[7] * x2;
+    (v01 + v23 * x4) + (v45 + v67 * x4) * x8
+}
+
+impl crate::lanes::Batched for Spheroid {
     /// The batched field: [`LANES`] points at a time through [`Spheroid::field_lanes`], the
     /// lanes it does not take and the remainder point by point; `pick` keeps what the caller
     /// stores.
@@ -597,60 +620,6 @@ impl Spheroid {
             *slot = pick(self.field_outlined(r));
         }
     }
-
-    /// [`Potential::field`] kept out of line, beside the lane code.
-    #[inline(never)]
-    fn field_outlined(&self, r: &Vec3) -> Field {
-        self.field(r)
-    }
-
-    /// [`Spheroid::batch`] compiled without extra target features.
-    fn fields_plain(&self, points: &[Vec3], out: &mut [Field]) {
-        self.batch(points, out, |f| f);
-    }
-
-    /// [`Spheroid::fields_plain`] for potentials only.
-    fn potentials_plain(&self, points: &[Vec3], out: &mut [Real]) {
-        self.batch(points, out, |f| f.potential);
-    }
-
-    /// [`Spheroid::batch`] compiled with AVX (no FMA, so every operation rounds as in the
-    /// scalar code).
-    ///
-    /// # Safety
-    ///
-    /// The CPU must support AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn fields_avx(&self, points: &[Vec3], out: &mut [Field]) {
-        self.batch(points, out, |f| f);
-    }
-
-    /// [`Spheroid::fields_avx`] for potentials only.
-    ///
-    /// # Safety
-    ///
-    /// The CPU must support AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn potentials_avx(&self, points: &[Vec3], out: &mut [Real]) {
-        self.batch(points, out, |f| f.potential);
-    }
-}
-
-/// [`estrin16`] lane by lane.
-#[inline(always)]
-fn estrin16_lanes(x: F4, c: &[Real]) -> F4 {
-    let coefficient = |i: usize| c.get(i).copied().unwrap_or(0.0);
-    let v: [F4; 8] = std::array::from_fn(|i| coefficient(2 * i) + coefficient(2 * i + 1) * x);
-    let x2 = x * x;
-    let x4 = x2 * x2;
-    let x8 = x4 * x4;
-    let v01 = v[0] + v[1] * x2;
-    let v23 = v[2] + v[3] * x2;
-    let v45 = v[4] + v[5] * x2;
-    let v67 = v[6] + v[7] * x2;
-    (v01 + v23 * x4) + (v45 + v67 * x4) * x8
 }
 
 impl Potential for Spheroid {
@@ -693,24 +662,12 @@ impl Potential for Spheroid {
     /// Four points at a time through one lane-interleaved evaluation (AVX where the CPU has
     /// it), each result bit for bit [`Potential::field`]'s.
     fn fields_into(&self, points: &[Vec3], out: &mut [Field]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx") {
-            // SAFETY: AVX was just detected on this CPU (std caches the answer).
-            unsafe { self.fields_avx(points, out) };
-            return;
-        }
-        self.fields_plain(points, out);
+        crate::lanes::fields_into(self, points, out);
     }
 
     /// As [`Potential::fields_into`], keeping the potentials.
     fn potentials_into(&self, points: &[Vec3], out: &mut [Real]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx") {
-            // SAFETY: AVX was just detected on this CPU (std caches the answer).
-            unsafe { self.potentials_avx(points, out) };
-            return;
-        }
-        self.potentials_plain(points, out);
+        crate::lanes::potentials_into(self, points, out);
     }
 
     #[inline]
@@ -869,7 +826,7 @@ mod tests {
                 let mut out = vec![blank; points.len()];
                 body.fields_into(points, &mut out);
                 runs.push(("fields_into", out.clone()));
-                body.fields_plain(points, &mut out);
+                crate::lanes::fields_plain(&body, points, &mut out);
                 runs.push(("fields_plain", out.clone()));
                 for (name, got) in &runs {
                     for ((r, g), w) in points.iter().zip(got).zip(want) {
