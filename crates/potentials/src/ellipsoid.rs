@@ -422,34 +422,21 @@ pub(crate) fn nearest_power_of_two(v: Real) -> Real {
 }
 
 impl crate::lanes::Batched for Ellipsoid {
-    /// The batched field: [`LANES`] points at a time through [`Ellipsoid::field_lanes`], the
-    /// remainder point by point; `pick` keeps what the caller stores.
     #[inline(always)]
     fn batch<T>(&self, points: &[Vec3], out: &mut [T], pick: impl Fn(Field) -> T) {
-        let n = points.len().min(out.len());
-        let (points, out) = (&points[..n], &mut out[..n]);
-        let mut point_chunks = points.chunks_exact(LANES);
-        let mut out_chunks = out.chunks_exact_mut(LANES);
-        for (chunk, target) in (&mut point_chunks).zip(&mut out_chunks) {
-            let (fields, taken) = self.field_lanes([chunk[0], chunk[1], chunk[2], chunk[3]]);
-            // Stored unconditionally first: a store per taken lane only would invite the
-            // compiler to sink the lane arithmetic into four scalar branches.
-            for (slot, field) in target.iter_mut().zip(fields) {
-                *slot = pick(field);
-            }
-            for l in 0..LANES {
-                if !taken[l] {
-                    target[l] = pick(self.field_outlined(&chunk[l]));
-                }
-            }
-        }
-        for (r, slot) in point_chunks
-            .remainder()
-            .iter()
-            .zip(out_chunks.into_remainder())
-        {
-            *slot = pick(self.field_outlined(r));
-        }
+        crate::lanes::batch_lanes(self, points, out, pick);
+    }
+}
+
+impl crate::lanes::LaneField for Ellipsoid {
+    #[inline(always)]
+    fn field_lanes(&self, points: [Vec3; LANES]) -> ([Field; LANES], [bool; LANES]) {
+        Ellipsoid::field_lanes(self, points)
+    }
+
+    #[inline(always)]
+    fn field_outlined(&self, r: &Vec3) -> Field {
+        Ellipsoid::field_outlined(self, r)
     }
 }
 

@@ -274,6 +274,53 @@ pub(crate) fn potentials_into<B: Batched>(body: &B, points: &[Vec3], out: &mut [
     potentials_plain(body, points, out);
 }
 
+/// A field that computes [`LANES`] points side by side, where any lane may decline (a point
+/// the lane code does not serve: inside the body, beyond its far-field limit, not a number):
+/// [`batch_lanes`] then evaluates that point alone.
+pub(crate) trait LaneField {
+    /// The fields at the four points and which lanes took the lane path (the others'
+    /// entries are meaningless).
+    fn field_lanes(&self, points: [Vec3; LANES]) -> ([Field; LANES], [bool; LANES]);
+    /// One point's field, kept out of line so that the lane code beside it stays small
+    /// enough for the compiler to vectorise whole.
+    fn field_outlined(&self, r: &Vec3) -> Field;
+}
+
+/// [`Batched::batch`] for a [`LaneField`]: [`LANES`] points at a time, the declined lanes and
+/// the remainder point by point; `pick` keeps what the caller stores.
+#[inline(always)]
+pub(crate) fn batch_lanes<L: LaneField, T>(
+    body: &L,
+    points: &[Vec3],
+    out: &mut [T],
+    pick: impl Fn(Field) -> T,
+) {
+    let n = points.len().min(out.len());
+    let (points, out) = (&points[..n], &mut out[..n]);
+    let mut point_chunks = points.chunks_exact(LANES);
+    let mut out_chunks = out.chunks_exact_mut(LANES);
+    for (chunk, target) in (&mut point_chunks).zip(&mut out_chunks) {
+        let (fields, taken) = body.field_lanes([chunk[0], chunk[1], chunk[2], chunk[3]]);
+        // Stored unconditionally first: a store per taken lane only would invite the
+        // compiler to sink the lane arithmetic into four scalar branches.
+        for (slot, field) in target.iter_mut().zip(fields) {
+            *slot = pick(field);
+        }
+        for l in 0..LANES {
+            if !taken[l] {
+                target[l] = pick(body.field_outlined(&chunk[l]));
+            }
+        }
+    }
+    for (r, slot) in point_chunks
+        .remainder()
+        .iter()
+        .zip(out_chunks.into_remainder())
+    {
+        *slot = pick(body.field_outlined(r));
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -592,33 +592,21 @@ fn estrin16_lanes(x: F4, c: &[Real]) -> F4 {
 }
 
 impl crate::lanes::Batched for Spheroid {
-    /// The batched field: [`LANES`] points at a time through [`Spheroid::field_lanes`], the
-    /// lanes it does not take and the remainder point by point; `pick` keeps what the caller
-    /// stores.
     #[inline(always)]
     fn batch<T>(&self, points: &[Vec3], out: &mut [T], pick: impl Fn(Field) -> T) {
-        let n = points.len().min(out.len());
-        let (points, out) = (&points[..n], &mut out[..n]);
-        let mut point_chunks = points.chunks_exact(LANES);
-        let mut out_chunks = out.chunks_exact_mut(LANES);
-        for (chunk, target) in (&mut point_chunks).zip(&mut out_chunks) {
-            let (fields, taken) = self.field_lanes([chunk[0], chunk[1], chunk[2], chunk[3]]);
-            for (slot, field) in target.iter_mut().zip(fields) {
-                *slot = pick(field);
-            }
-            for l in 0..LANES {
-                if !taken[l] {
-                    target[l] = pick(self.field_outlined(&chunk[l]));
-                }
-            }
-        }
-        for (r, slot) in point_chunks
-            .remainder()
-            .iter()
-            .zip(out_chunks.into_remainder())
-        {
-            *slot = pick(self.field_outlined(r));
-        }
+        crate::lanes::batch_lanes(self, points, out, pick);
+    }
+}
+
+impl crate::lanes::LaneField for Spheroid {
+    #[inline(always)]
+    fn field_lanes(&self, points: [Vec3; LANES]) -> ([Field; LANES], [bool; LANES]) {
+        Spheroid::field_lanes(self, points)
+    }
+
+    #[inline(always)]
+    fn field_outlined(&self, r: &Vec3) -> Field {
+        Spheroid::field_outlined(self, r)
     }
 }
 
