@@ -270,7 +270,7 @@ const ANGLE_TABLE: usize = 10;
 
 /// The angular singularity $\eta$ on the circle of radius $s_c$ for a singular point at
 /// in-plane radius $s_q$ and height $h$ (module docs).
-fn angular_width(s_c: Real, s_q: Real, h: Real) -> Real {
+pub(crate) fn angular_width(s_c: Real, s_q: Real, h: Real) -> Real {
     if s_c <= 0.0 || s_q <= 0.0 {
         return 10.0;
     }

@@ -5,6 +5,7 @@
 //! [`SingleLevel`] evaluates one table of it, uncertified.
 
 use super::{Problem, Strategy};
+use crate::aimed::lamina::angular_width;
 use crate::aimed::{nearest_on_ellipsoid, nearest_singular_point};
 use crate::assembly::{
     assemble, not_met, relative_from_absolute, solid_values, symmetrise_lamina, Values,
@@ -79,18 +80,12 @@ fn far_lamina_start(x: &Body, y: &Body, p: &Placement, options: &InteractionOpti
     let radius = lamina.radius();
     let disk = Vec3::new(radius, radius, 0.0);
     let (_, q) = nearest_singular_point(y, &p.map, |r| nearest_on_ellipsoid(&disk, r), radius);
-    let (s_q, h) = (q.xy().norm(), q.z.abs());
-    if s_q.is_nan() || s_q <= 0.0 {
-        return 0;
-    }
-    let eta = ((radius * radius + s_q * s_q + h * h) / (2.0 * radius * s_q))
-        .max(1.0)
-        .acosh();
-    if eta < FAR_LAMINA_ETA {
+    let eta = angular_width(radius, q.xy().norm(), q.z.abs());
+    if eta.is_nan() || eta < FAR_LAMINA_ETA {
         return 0;
     }
     let kappa = TRANSVERSE_RATIO[usize::from(p.ratio).min(TRANSVERSE_RATIO.len() - 1)];
-    let t = kappa * (1.0 / options.relative_tolerance).ln() / eta.max(1e-3);
+    let t = kappa * (1.0 / options.relative_tolerance).ln() / eta;
     (t.round() as u16).min(MAX_TRANSVERSE)
 }
 
