@@ -8,7 +8,10 @@
 //! the engine's estimate plus the reference's own estimate: the estimate bounds the error, which
 //! is what certification promises. Nothing here is timed.
 
-use surfgrav_interaction::work_precision::{independent_reference, interaction_error, pose_set};
+use surfgrav_interaction::work_precision::{
+    independent_reference, interaction_error, pose_set, PoseCase,
+};
+use surfgrav_interaction::Interaction;
 use surfgrav_interaction::InteractionEngine;
 
 /// The requested tolerance (the engine's default).
@@ -16,6 +19,20 @@ const TOLERANCE: f64 = 1e-12;
 
 /// The reference's tolerance: ten times tighter than the result checked.
 const REFERENCE_TOLERANCE: f64 = 1e-13;
+
+/// The independent reference for `case`, which must certify.
+fn certified_reference(case: &PoseCase) -> Interaction {
+    let (reference, certified) = independent_reference(
+        &case.a,
+        &case.pose_a,
+        &case.b,
+        &case.pose_b,
+        REFERENCE_TOLERANCE,
+    )
+    .unwrap();
+    assert!(certified, "{}: reference not certified", case.label);
+    reference
+}
 
 #[test]
 fn random_poses_certify_and_estimates_bound_true_errors() {
@@ -33,15 +50,7 @@ fn random_poses_certify_and_estimates_bound_true_errors() {
             .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
             .unwrap_or_else(|e| panic!("{}: {e}", case.label));
         assert!(result.error_estimate <= TOLERANCE, "{}", case.label);
-        let (reference, certified) = independent_reference(
-            &case.a,
-            &case.pose_a,
-            &case.b,
-            &case.pose_b,
-            REFERENCE_TOLERANCE,
-        )
-        .unwrap();
-        assert!(certified, "{}: reference not certified", case.label);
+        let reference = certified_reference(case);
         assert_ne!(
             reference.integrated_over, result.integrated_over,
             "{}: the reference integrates over the other body",
@@ -132,15 +141,7 @@ fn far_disks_start_at_the_level_their_rim_asks_for() {
             case.label,
             result.evaluations
         );
-        let (reference, certified) = independent_reference(
-            &case.a,
-            &case.pose_a,
-            &case.b,
-            &case.pose_b,
-            REFERENCE_TOLERANCE,
-        )
-        .unwrap();
-        assert!(certified, "{}: reference not certified", case.label);
+        let reference = certified_reference(case);
         let error = interaction_error(&result, &reference);
         assert!(
             error <= result.error_estimate + reference.error_estimate,

@@ -10,6 +10,21 @@ fn surfgrav(args: &[&str]) -> Output {
         .expect("the binary runs")
 }
 
+/// `interact --batch FILE`, which must succeed: one JSON object per output line.
+fn batch(file: &str) -> Vec<serde_json::Value> {
+    let out = surfgrav(&["interact", "--batch", file]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
 fn vector(v: &serde_json::Value) -> [f64; 3] {
     let a = v.as_array().expect("an array");
     [
@@ -216,17 +231,7 @@ fn batch_gives_the_single_results_with_times() {
             .to_string(),
     ];
     std::fs::write(&file, lines.join("\n")).unwrap();
-    let out = surfgrav(&["interact", "--batch", file.to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
-    let results: Vec<serde_json::Value> = text
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let results = batch(file.to_str().unwrap());
     assert_eq!(results.len(), 3);
     let singles = [
         vec!["--a", spheroid, "--b", spheroid, "--position", "3,0,0"],
@@ -309,17 +314,7 @@ fn the_issue_configurations_certify_in_one_batch() {
         env!("CARGO_MANIFEST_DIR"),
         "/../../data/configurations/pose-types.jsonl"
     );
-    let out = surfgrav(&["interact", "--batch", file]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
-    let results: Vec<serde_json::Value> = text
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let results = batch(file);
     assert_eq!(results.len(), 24);
     for (i, r) in results.iter().enumerate() {
         let line = i + 1;
