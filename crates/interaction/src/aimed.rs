@@ -67,7 +67,7 @@ use super::body::{Body, BodyShape};
 use super::kernel::{FrameMap, SolidBlock, SolidSums, BLOCK};
 use nalgebra::{Complex, Matrix3};
 use std::f64::consts::{PI, TAU};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 use surfgrav_potentials::{Field, Potential, Symmetry};
 use surfgrav_quadrature::{GaussLegendre, Rule1D};
 use surfgrav_surfaces::{EllipsoidSurface, Real, Vec3};
@@ -315,6 +315,14 @@ fn asinh(z: Complex<Real>) -> Complex<Real> {
 /// match the measured ones (15 to 21: the counts at which each map's error falls below
 /// $3\cdot10^{-13}$ against a 64-node reference).
 const ANTIPODE: Complex<Real> = Complex::new(PI, 2.0);
+
+/// The Bernstein parameter of [`ANTIPODE`] for each map of [`CLUSTER_WIDTHS`] (a constant
+/// of the rule, computed once).
+fn antipode_rho(cluster: u8) -> Real {
+    static TABLE: OnceLock<[Real; CLUSTER_WIDTHS.len()]> = OnceLock::new();
+    TABLE.get_or_init(|| std::array::from_fn(|k| bernstein(ANTIPODE, k as u8)))
+        [usize::from(cluster)]
+}
 
 /// The factor on the polar count predicted from the rim's singularities: their sphere-model
 /// singularities are weaker than the nearest point's, and their count over-predicts the
@@ -635,8 +643,19 @@ fn axis_pole(axes: &Vec3, y: &Body, map: &FrameMap) -> Option<(Vec3, Real, Real)
     parallel.then(|| (Vec3::z() * centre.z.signum(), centre.xy().norm(), distance))
 }
 
-/// The aim for integrating over the ellipsoid `e` (integration frame) in Y's field.
-pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Real) -> Aim {
+/// The aim for integrating over the ellipsoid `e` (integration frame) in Y's field, where
+/// another rule may compete: `loses(cluster, size)` tells whether a candidate of this
+/// clustering index with a level of `size` nodes (or more: it must hold for every larger size
+/// once it holds for one) would not be chosen over it. Candidates that lose are not planned
+/// further; `None` means every candidate loses (without a rival, `|_, _| false`, there is
+/// always an aim).
+pub(crate) fn aim(
+    e: &EllipsoidSurface,
+    y: &Body,
+    map: &FrameMap,
+    tolerance: Real,
+    loses: &dyn Fn(u8, usize) -> bool,
+) -> Option<Aim> {
     let axes = e.semi_axes();
     // On (or near) a common axis: the pole's point on the axis and Y's singular point nearest
     // to it, if Y's centroid lies within NEAR_AXIS of that distance from the axis.
@@ -697,7 +716,7 @@ pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Rea
         } else {
             clustered
         };
-        return Aim {
+        return Some(Aim {
             frame: Matrix3::from_columns(&[e1, e2, pole]),
             cluster,
             start: polar_for(cluster),
@@ -705,7 +724,7 @@ pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Rea
             known: false,
             coaxial,
             near_axis,
-        };
+        });
     }
     let mut angles = [Complex::new(0.0, width); RIM_SAMPLES];
     let (rim, count) = if width < RIM_WIDTH {
@@ -717,41 +736,77 @@ pub(crate) fn aim(e: &EllipsoidSurface, y: &Body, map: &FrameMap, tolerance: Rea
         *angle = singular_angle(&axes, &pole, stretch, &map.back(&(q - map.offset)));
     }
     let angles = &angles[..count];
-    let polar_for = |cluster: u8| {
-        let nearest = polar_count(bernstein(Complex::new(0.0, width), cluster), tolerance);
-        let antipode = polar_count(bernstein(ANTIPODE, cluster), tolerance);
-        let rho = angles
-            .iter()
-            .map(|&theta| bernstein(theta, cluster))
-            .fold(Real::INFINITY, Real::min);
-        let rim = (RIM_WEIGHT * Real::from(polar_count(rho, tolerance))).ceil() as u16;
-        nearest.max(antipode).max(rim)
-    };
-    let mut best = Aim {
+    let template = Aim {
         frame: Matrix3::from_columns(&[e1, e2, pole]),
         cluster: 0,
-        start: polar_for(0),
+        start: 0,
         anisotropy,
         known: true,
         coaxial,
         near_axis,
     };
-    let mut best_cost = grid_key(best.start, &best).size();
-    // Candidates: the product rule and the tabulated maps from the weakest to two steps
-    // stronger than the nearest point asks for.
-    let strongest = (usize::from(clustered) + 2).min(CLUSTER_WIDTHS.len() - 1) as u8;
-    for cluster in 1..=strongest {
-        let candidate = Aim {
-            cluster,
-            start: polar_for(cluster),
-            ..best
+    let cost = |cluster: u8, start: u16| {
+        grid_key(
+            start,
+            &Aim {
+                cluster,
+                start,
+                ..template
+            },
+        )
+        .size()
+    };
+    // A candidate's first level: the largest of the nearest point's count, the far
+    // hemisphere's and the rim's (RIM_WEIGHT times the count of its least favourable point).
+    // The cost grows with the level, so a candidate whose level so far already costs at
+    // least the best one's (more, or as much with a higher index: ties go to the lower
+    // index), or loses to the rival, cannot be chosen, and its remaining points are not
+    // evaluated.
+    let candidate = |cluster: u8, best: Option<(usize, u8)>| -> Option<(u16, usize)> {
+        let beats = |c: usize| {
+            best.is_none_or(|(b, k)| c < b || (c == b && cluster < k)) && !loses(cluster, c)
         };
-        let cost = grid_key(candidate.start, &candidate).size();
-        if cost < best_cost {
-            (best, best_cost) = (candidate, cost);
+        // The far hemisphere's count is tabulated: checked before any other point.
+        let antipode = polar_count(antipode_rho(cluster), tolerance);
+        if !beats(cost(cluster, antipode)) {
+            return None;
+        }
+        let nearest = polar_count(bernstein(Complex::new(0.0, width), cluster), tolerance);
+        let mut start = nearest.max(antipode);
+        if !beats(cost(cluster, start)) {
+            return None;
+        }
+        for &theta in angles {
+            let rho = bernstein(theta, cluster);
+            if rho.is_nan() {
+                continue;
+            }
+            let rim = (RIM_WEIGHT * Real::from(polar_count(rho, tolerance))).ceil() as u16;
+            if rim > start {
+                start = rim;
+                if !beats(cost(cluster, start)) {
+                    return None;
+                }
+            }
+        }
+        Some((start, cost(cluster, start)))
+    };
+    // Candidates: the product rule and the tabulated maps from the weakest to two steps
+    // stronger than the nearest point asks for; the cheapest (the lowest index among equals).
+    // The one the nearest point asks for first: usually the cheapest or near it, it prunes
+    // the others early.
+    let strongest = (usize::from(clustered) + 2).min(CLUSTER_WIDTHS.len() - 1) as u8;
+    let mut best: Option<(usize, u8, u16)> = None;
+    for cluster in std::iter::once(clustered).chain((0..=strongest).filter(|&c| c != clustered)) {
+        if let Some((start, c)) = candidate(cluster, best.map(|(b, k, _)| (b, k))) {
+            best = Some((c, cluster, start));
         }
     }
-    best
+    best.map(|(_, cluster, start)| Aim {
+        cluster,
+        start,
+        ..template
+    })
 }
 
 /// The node sums over the ellipsoid `e` on the grid `grid` turned by `aim` (the same terms as
@@ -1108,7 +1163,7 @@ mod tests {
         let ellipsoid = Ellipsoid::new(1.1, 0.7, 0.4, 2.0)?;
         let point = PointMass::new(1.5)?;
         // Only the aim's frame enters the sums: any aim, turned to a general frame.
-        let aimed = aim(&e, &Body::ellipsoid(ellipsoid)?, &map, 1e-12);
+        let aimed = aim(&e, &Body::ellipsoid(ellipsoid)?, &map, 1e-12, &|_, _| false).unwrap();
         for (polar, azimuth, cluster) in [(7, 9, 0), (8, 16, 2), (13, 5, 4)] {
             let grid = SphereGrid::new(polar, azimuth, cluster)?;
             assert_eq!(grid.len(), polar * azimuth);

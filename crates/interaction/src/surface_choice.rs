@@ -77,6 +77,9 @@ pub(crate) struct Placement {
     pub(crate) aim: Option<aimed::Aim>,
     /// The aimed lamina rule's plan, where X is a disk and the aimed rule is wanted.
     pub(crate) lamina_aim: Option<aimed::lamina::LaminaAim>,
+    /// Whether every aimed rule of this side loses to the other side's predicted cost
+    /// ([`Rival`]): then this side is not chosen, and it has no aim.
+    pub(crate) outcompeted: bool,
 }
 
 impl Placement {
@@ -84,7 +87,7 @@ impl Placement {
     /// ellipsoid whose nodes need no check, with [`Parametrisation::Aimed`], or with
     /// [`Parametrisation::Automatic`] unless the pose has both mirror symmetries (then the
     /// azimuth–height table, clustered toward the other body and quartered, is cheaper).
-    fn aimed(self, x: &Body, y: &Body, options: InteractionOptions) -> Self {
+    fn aimed(self, x: &Body, y: &Body, options: InteractionOptions, rival: Rival) -> Self {
         let ladder = matches!(
             options.method,
             MethodChoice::Automatic | MethodChoice::FixedRules
@@ -95,9 +98,13 @@ impl Placement {
                 Parametrisation::Automatic => !(self.half_azimuth && self.half_transverse),
                 Parametrisation::AzimuthHeight | Parametrisation::PolarAzimuth => false,
             };
+        let mut outcompeted = false;
         let aim = match x.shape() {
             BodyShape::Solid(e) if wanted && !self.node_check => {
-                Some(aimed::aim(e, y, &self.map, options.relative_tolerance))
+                let loses = |cluster: u8, size: usize| rival.beats(aimed_cost(y, cluster, size));
+                let aim = aimed::aim(e, y, &self.map, options.relative_tolerance, &loses);
+                outcompeted = aim.is_none();
+                aim
             }
             _ => None,
         };
@@ -110,10 +117,41 @@ impl Placement {
         Self {
             aim,
             lamina_aim,
+            outcompeted,
             ..self
         }
     }
 }
+
+/// The other candidate surface's predicted cost, where it was placed first
+/// ([`choose_surface`]): a rule of this side that would not be chosen over it need not be
+/// planned.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Rival {
+    /// No other candidate (or not placed yet).
+    None,
+    /// This is side B, A costs this: B is chosen only below it.
+    A(Real),
+    /// This is side A, B costs this: A is chosen unless B is below it.
+    B(Real),
+}
+
+impl Rival {
+    /// Whether the rival is chosen over this side at a predicted cost of `cost` (the same
+    /// comparison as [`choose_surface`]'s; it then holds for every larger cost too).
+    fn beats(self, cost: Real) -> bool {
+        match self {
+            Rival::None => false,
+            // Not below (NaN included: then A is chosen, as in `choose_surface`).
+            Rival::A(a) => cost.partial_cmp(&(a * CHOICE_MARGIN)) != Some(std::cmp::Ordering::Less),
+            Rival::B(b) => b < cost * CHOICE_MARGIN,
+        }
+    }
+}
+
+/// B is integrated over only where its predicted cost is below this factor times A's (ties
+/// go to A).
+const CHOICE_MARGIN: Real = 1.0 - 1e-9;
 /// The integration surface: the one forced by the options, the only one there is, or the
 /// one with the lower predicted cost ([`predicted_cost`]); ties go to A.
 #[allow(clippy::type_complexity)]
@@ -125,18 +163,18 @@ pub(crate) fn choose_surface<'b>(
     pose_b: &'b Pose,
     unknown: bool,
 ) -> Result<(Placement, &'b Body, &'b Pose, &'b Body, &'b Pose), InteractionError> {
-    let over_a = || -> Result<_, InteractionError> {
+    let over_a = |rival: Rival| -> Result<_, InteractionError> {
         Ok((
-            place(options, Side::A, a, pose_a, b, pose_b, unknown)?,
+            place(options, Side::A, a, pose_a, b, pose_b, unknown, rival)?,
             a,
             pose_a,
             b,
             pose_b,
         ))
     };
-    let over_b = || -> Result<_, InteractionError> {
+    let over_b = |rival: Rival| -> Result<_, InteractionError> {
         Ok((
-            place(options, Side::B, b, pose_b, a, pose_a, unknown)?,
+            place(options, Side::B, b, pose_b, a, pose_a, unknown, rival)?,
             b,
             pose_b,
             a,
@@ -155,26 +193,48 @@ pub(crate) fn choose_surface<'b>(
                 reason: "the body chosen to integrate over has no surface",
             });
         }
-        return if side == Side::A { over_a() } else { over_b() };
+        return if side == Side::A {
+            over_a(Rival::None)
+        } else {
+            over_b(Rival::None)
+        };
     }
     match (a.has_surface(), b.has_surface()) {
         (false, false) => Err(InteractionError::NoSurface {
             reason: "neither body has a surface (give one a shape)",
         }),
-        (true, false) => over_a(),
-        (false, true) => over_b(),
+        (true, false) => over_a(Rival::None),
+        (false, true) => over_b(Rival::None),
         (true, true) => {
-            let candidate_a = over_a()?;
-            let candidate_b = over_b()?;
+            // The side likely to win first (a disk's lamina rule, or the cheaper source
+            // field), so that the other's planning stops at the rules that cannot beat it.
+            // The choice is the same in either order (`Rival`).
+            let first_b = likely_first(b, a) && !likely_first(a, b);
+            let (candidate_a, candidate_b) = if first_b {
+                let candidate_b = over_b(Rival::None)?;
+                let cost_b = predicted_cost(options, &candidate_b.0, a);
+                (over_a(Rival::B(cost_b))?, candidate_b)
+            } else {
+                let candidate_a = over_a(Rival::None)?;
+                let cost_a = predicted_cost(options, &candidate_a.0, b);
+                (candidate_a, over_b(Rival::A(cost_a))?)
+            };
             let cost_a = predicted_cost(options, &candidate_a.0, b);
             let cost_b = predicted_cost(options, &candidate_b.0, a);
-            Ok(if cost_b < cost_a * (1.0 - 1e-9) {
+            Ok(if cost_b < cost_a * CHOICE_MARGIN {
                 candidate_b
             } else {
                 candidate_a
             })
         }
     }
+}
+
+/// Whether integrating over X in Y's field is worth placing before the other way round: X
+/// a disk (its lamina rule usually wins) or Y's field the cheaper one to evaluate.
+fn likely_first(x: &Body, y: &Body) -> bool {
+    matches!(x.shape(), BodyShape::Disk(_))
+        || y.potential().field_cost() < x.potential().field_cost()
 }
 
 /// Predicted cost of integrating over X in Y's field: the predicted table size
@@ -188,22 +248,15 @@ pub(crate) fn predicted_cost(
     placement: &Placement,
     y: &Body,
 ) -> Real {
+    if placement.outcompeted {
+        return Real::INFINITY;
+    }
     let field_cost = y.potential().field_cost();
     if let Some(aim) = &placement.lamina_aim {
         return aim.size(aim.start) as Real * field_cost;
     }
     if let Some(aim) = &placement.aim {
-        // Near a disk's rim (a singular curve running past the pole) the aimed rule
-        // converges far more slowly than its point model predicts: measured on the
-        // random-pose set (`pose_benchmark`, seed 12, gaps 0.05 to 1), the spheroid or
-        // ellipsoid beside a disk took 1.3 to 8 times the time of the disk's own lamina
-        // rule in five cases of six.
-        let rim = if matches!(y.shape(), BodyShape::Disk(_)) && aim.cluster > 0 {
-            AIMED_DISK_PENALTY
-        } else {
-            1.0
-        };
-        return aimed::grid_key(aim.start, aim).size() as Real * field_cost * rim;
+        return aimed_cost(y, aim.cluster, aimed::grid_key(aim.start, aim).size());
     }
     let t = Real::from(start_transverse(options, placement));
     let kappa = TRANSVERSE_RATIO[usize::from(placement.ratio)];
@@ -217,6 +270,25 @@ pub(crate) fn predicted_cost(
     nodes * field_cost
 }
 
+/// The predicted cost of the aimed rule over X with clustering index `cluster` and `size`
+/// nodes at its first level, in Y's field ([`predicted_cost`]).
+fn aimed_cost(y: &Body, cluster: u8, size: usize) -> Real {
+    // Near a disk's rim (a singular curve running past the pole) the aimed rule
+    // converges far more slowly than its point model predicts: measured on the
+    // random-pose set (`pose_benchmark`, seed 12, gaps 0.05 to 1), the spheroid or
+    // ellipsoid beside a disk took 1.3 to 8 times the time of the disk's own lamina
+    // rule in five cases of six.
+    let rim = if matches!(y.shape(), BodyShape::Disk(_)) && cluster > 0 {
+        AIMED_DISK_PENALTY
+    } else {
+        1.0
+    };
+    size as Real * y.potential().field_cost() * rim
+}
+
+/// X's placement in Y's field, with the aimed rule's plan where it is used; `rival`: the
+/// other side's predicted cost, where it was placed first.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn place(
     options: &InteractionOptions,
     side: Side,
@@ -225,6 +297,7 @@ pub(crate) fn place(
     y: &Body,
     pose_y: &Pose,
     unknown_shape: bool,
+    rival: Rival,
 ) -> Result<Placement, InteractionError> {
     let relative = pose_x
         .rotation
@@ -282,8 +355,9 @@ pub(crate) fn place(
             || distance > CANCELLATION_RATIO * cancellation_radius(x),
         aim: None,
         lamina_aim: None,
+        outcompeted: false,
     }
-    .aimed(x, y, *options))
+    .aimed(x, y, *options, rival))
 }
 
 /// The first transverse count of the ladder, predicted from the gap ratio $g$, the
@@ -328,5 +402,63 @@ pub(crate) fn cancellation_radius(x: &Body) -> Real {
             (3.0 / inverse).min(x.bounding_radius())
         }
         _ => x.bounding_radius(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::work_precision::pose_set;
+
+    /// Placing the second side against the first one's cost ([`Rival`]) only skips rules that
+    /// cannot be chosen: on the random-pose set (seeds 12 and 13, every pair of kinds, gaps
+    /// 0.05 to 5) and with the bodies swapped, the chosen side, its aim (clustering and first
+    /// level) and its predicted cost are those of placing both sides in full.
+    #[test]
+    fn a_rival_changes_no_choice() {
+        let options = InteractionOptions::default();
+        let mut outcompeted = 0;
+        for seed in [12, 13] {
+            for case in pose_set(seed, &[0.05, 0.2, 1.0, 5.0], 2) {
+                for (a, pose_a, b, pose_b) in [
+                    (&case.a, &case.pose_a, &case.b, &case.pose_b),
+                    (&case.b, &case.pose_b, &case.a, &case.pose_a),
+                ] {
+                    let full_a =
+                        place(&options, Side::A, a, pose_a, b, pose_b, false, Rival::None).unwrap();
+                    let full_b =
+                        place(&options, Side::B, b, pose_b, a, pose_a, false, Rival::None).unwrap();
+                    let (cost_a, cost_b) = (
+                        predicted_cost(&options, &full_a, b),
+                        predicted_cost(&options, &full_b, a),
+                    );
+                    let expected = if cost_b < cost_a * CHOICE_MARGIN {
+                        (full_b, cost_b)
+                    } else {
+                        (full_a, cost_a)
+                    };
+                    let (chosen, x, ..) =
+                        choose_surface(&options, a, pose_a, b, pose_b, false).unwrap();
+                    let y = if std::ptr::eq(x, a) { b } else { a };
+                    let label = &case.label;
+                    assert_eq!(chosen.side, expected.0.side, "{label}");
+                    assert_eq!(predicted_cost(&options, &chosen, y), expected.1, "{label}");
+                    let key = |p: &Placement| p.aim.map(|aim| (aim.cluster, aim.start));
+                    assert_eq!(key(&chosen), key(&expected.0), "{label}");
+                    assert_eq!(chosen.lamina_aim, expected.0.lamina_aim, "{label}");
+                    // How often the rival spared a whole plan.
+                    for rival in [Rival::A(cost_a), Rival::B(cost_b)] {
+                        let side = if matches!(rival, Rival::A(_)) {
+                            place(&options, Side::B, b, pose_b, a, pose_a, false, rival)
+                        } else {
+                            place(&options, Side::A, a, pose_a, b, pose_b, false, rival)
+                        };
+                        outcompeted += usize::from(side.unwrap().outcompeted);
+                    }
+                }
+            }
+        }
+        // The test would not see the pruning at work without sides that lose outright.
+        assert!(outcompeted > 0);
     }
 }
