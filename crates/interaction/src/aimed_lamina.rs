@@ -123,17 +123,94 @@ pub(crate) struct ClusteredSide {
     mu: Real,
 }
 
-/// The Gauss–Legendre count on $u \in [0, 1]$ whose error bound $\rho^{-2n}$ meets
-/// `tolerance` for a singularity at $u^\ast$.
-fn bernstein_count(u: Complex<Real>, tolerance: Real) -> Real {
-    // The ellipse with foci 0 and 1 through u: semi-major axis (in units of the half-length)
-    // a = (|u| + |u - 1|), and rho = a + sqrt(a^2 - 1).
-    // Moduli by square roots (`Complex::norm` calls the C library's `hypot`, several times
-    // slower, and the plans evaluate this for every point and candidate width).
+/// The Bernstein parameter $\rho$ of the ellipse with foci 0 and 1 through $u^\ast$ = `u`
+/// (at least $1 + 10^{-3}$): the Gauss–Legendre error on $u \in [0, 1]$ falls like
+/// $\rho^{-2n}$.
+#[inline]
+fn bernstein_rho(u: Complex<Real>) -> Real {
+    // The semi-major axis (in units of the half-length) a = (|u| + |u - 1|), and
+    // rho = a + sqrt(a^2 - 1). Moduli by square roots (`Complex::norm` calls the C library's
+    // `hypot`, several times slower, and the plans evaluate this for every point and
+    // candidate width).
     let modulus = |re: Real, im: Real| (re * re + im * im).sqrt();
     let a = modulus(u.re, u.im) + modulus(u.re - 1.0, u.im);
-    let rho = (a + (a * a - 1.0).max(0.0).sqrt()).max(1.0 + 1e-3);
-    (1.0 / tolerance).ln() / (2.0 * rho.ln())
+    (a + (a * a - 1.0).max(0.0).sqrt()).max(1.0 + 1e-3)
+}
+
+/// The Gauss–Legendre count whose error bound $\rho^{-2n}$ meets the tolerance $\tau$, from
+/// `log_tolerance` $= \ln(1/\tau) \ge 0$: $\ln(1/\tau) / (2\ln\rho)$. It falls as $\rho$
+/// grows, so the largest count over several points is that of the least $\rho$.
+#[inline]
+fn bernstein_count(log_tolerance: Real, rho: Real) -> Real {
+    log_tolerance / (2.0 * rho.ln())
+}
+
+/// A candidate width of [`ClusteredSide::plan_many`], evaluated point by point.
+#[derive(Debug, Clone, Copy)]
+struct Candidate {
+    /// The sinh map's width (infinite: plain Gauss–Legendre; 0: not a candidate).
+    width: Real,
+    /// $\mu = \operatorname{asinh}(L/w)$ (0 for plain Gauss–Legendre).
+    mu: Real,
+    /// The least $\rho$ over the points evaluated so far, its count and its point.
+    least: Real,
+    count: Real,
+    worst: usize,
+    /// The point evaluated first, and how many have been.
+    start: usize,
+    done: usize,
+}
+
+impl Default for Candidate {
+    fn default() -> Self {
+        Self {
+            width: 0.0,
+            mu: 0.0,
+            least: Real::INFINITY,
+            count: 0.0,
+            worst: 0,
+            start: 0,
+            done: 0,
+        }
+    }
+}
+
+impl Candidate {
+    /// Evaluates the remaining points (from `start`, cyclically) until all are done (true:
+    /// `count` is the largest count over the points) or the count exceeds `bound` (false:
+    /// `count` is a lower bound, the evaluation can go on later with a larger bound).
+    fn advance(
+        &mut self,
+        singular: &[Complex<Real>],
+        length: Real,
+        log_tolerance: Real,
+        bound: Real,
+    ) -> bool {
+        if self.count > bound {
+            return false;
+        }
+        let n = singular.len();
+        while self.done < n {
+            let k = (self.start + self.done) % n;
+            self.done += 1;
+            let t = singular[k];
+            let rho = if self.width.is_finite() {
+                bernstein_rho(super::asinh(t / self.width) / self.mu)
+            } else {
+                bernstein_rho(t / length)
+            };
+            // The count falls as ρ grows: only a new least ρ raises it.
+            if rho < self.least {
+                self.least = rho;
+                self.worst = k;
+                self.count = bernstein_count(log_tolerance, rho);
+                if self.count > bound {
+                    return false;
+                }
+            }
+        }
+        true
+    }
 }
 
 impl ClusteredSide {
@@ -143,70 +220,71 @@ impl ClusteredSide {
         Self::plan_many(length, &[singular], tolerance)
     }
 
-    /// The side of length `length` whose integrand is singular at each of `singular`: the
-    /// width (or none) with the fewest predicted nodes for the least favourable point.
+    /// The side of length `length` whose integrand is singular at each of `singular`: of the
+    /// widths whose predicted count for the least favourable point is within [`WIDTH_SLACK`]
+    /// of the fewest, the widest (plain Gauss–Legendre counts as the widest of all).
     fn plan_many(length: Real, singular: &[Complex<Real>], tolerance: Real) -> Self {
         let length = length.max(Real::MIN_POSITIVE);
-        // The largest count over the points, or infinity once it exceeds `bound` (such a
-        // width cannot be chosen).
-        let worst = |f: &dyn Fn(Complex<Real>) -> Real, bound: Real| {
-            let mut largest: Real = 0.0;
-            for &t in singular {
-                largest = largest.max(f(t));
-                if largest > bound {
-                    return Real::INFINITY;
-                }
-            }
-            largest
-        };
-        let mut candidates = [(Real::INFINITY, Real::INFINITY); 10];
-        candidates[0] = (
-            Real::INFINITY,
-            worst(&|t| bernstein_count(t / length, tolerance), Real::INFINITY),
-        );
-        let mut fewest = candidates[0].1;
+        // ln(1/τ) once per plan (τ in (0, 1), the engine's check; otherwise every count is 0).
+        let log_tolerance = (1.0 / tolerance).ln().max(0.0);
         let scale = singular
             .iter()
             .map(|t| (t.re * t.re + t.im * t.im).sqrt())
             .fold(Real::INFINITY, Real::min)
             .max(1e-12 * length);
-        for (k, slot) in (-6..=2).zip(candidates.iter_mut().skip(1)) {
-            let width = scale * (0.5 * Real::from(k)).exp2();
-            if width >= length {
+        // Candidate 0: plain Gauss–Legendre; candidate i = 1..=9: the sinh map of width
+        // scale·2^((i − 7)/2), if narrower than the side.
+        let mut candidates = [Candidate::default(); 10];
+        for (i, c) in candidates.iter_mut().enumerate().skip(1) {
+            let width = scale * (0.5 * (i as Real - 7.0)).exp2();
+            if width < length {
+                *c = Candidate {
+                    width,
+                    mu: (length / width).asinh(),
+                    ..Candidate::default()
+                };
+            }
+        }
+        candidates[0].width = Real::INFINITY;
+        // Only the fewest count and the chosen width's count are needed exactly: every other
+        // candidate stops at the first point whose count exceeds the bound. The fewest
+        // first, the likeliest candidates first (measured on the pose set: the width of the
+        // scale, plain Gauss–Legendre, then the wider ones), each starting at the point
+        // that was least favourable for the one before (usually again the least favourable).
+        let mut fewest = Real::INFINITY;
+        let mut first = 0;
+        for i in [7, 0, 8, 9, 6, 5, 4, 3, 2, 1] {
+            let c = &mut candidates[i];
+            if c.width == 0.0 {
                 continue;
             }
-            let mu = (length / width).asinh();
-            let predicted = worst(
-                &|t| bernstein_count(super::asinh(t / width) / mu, tolerance),
-                WIDTH_SLACK * fewest,
-            );
-            fewest = fewest.min(predicted);
-            *slot = (width, predicted);
+            c.start = first;
+            if c.advance(singular, length, log_tolerance, fewest) {
+                fewest = fewest.min(c.count);
+            }
+            first = c.worst;
         }
-        // The widest width within the slack of the fewest (plain first: it is the widest).
-        let (width, predicted) = candidates
-            .iter()
-            .filter(|c| c.1 <= WIDTH_SLACK * fewest)
-            .fold(
-                (0.0, Real::INFINITY),
-                |best, &c| if c.0 > best.0 { c } else { best },
-            );
-        // No candidate (a NaN prediction): plain Gauss–Legendre.
-        let (width, predicted) = if width > 0.0 {
-            (width, predicted)
-        } else {
-            candidates[0]
-        };
-        let mu = if width.is_finite() {
-            (length / width).asinh()
-        } else {
-            0.0
+        // Then the widest within the slack of the fewest (plain first: it is the widest); the
+        // candidate of the fewest always qualifies.
+        let bound = WIDTH_SLACK * fewest;
+        let chosen = [0, 9, 8, 7, 6, 5, 4, 3, 2, 1].into_iter().find(|&i| {
+            let c = &mut candidates[i];
+            c.width != 0.0 && c.count <= bound && c.advance(singular, length, log_tolerance, bound)
+        });
+        // None (not reached: the fewest qualifies): plain Gauss–Legendre.
+        let c = match chosen {
+            Some(i) => candidates[i],
+            None => {
+                let mut plain = candidates[0];
+                plain.advance(singular, length, log_tolerance, Real::INFINITY);
+                plain
+            }
         };
         Self {
             length,
-            width,
-            predicted,
-            mu,
+            width: c.width,
+            predicted: c.count,
+            mu: c.mu,
         }
     }
 
