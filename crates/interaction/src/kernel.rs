@@ -760,31 +760,74 @@ pub(crate) fn add_lamina_rim_node(
     sizes.force += (relative.abs() + potential.abs()) * nu.norm();
 }
 
-/// The lamina loop (table frame).
+/// The lamina loop (table frame): the same terms as [`add_lamina_area_node`] and
+/// [`add_lamina_rim_node`], each rounded the same way and added in the same order.
+///
+/// Each block of [`BLOCK`] nodes goes in three passes: the nodes ($\mathbf x = \mathbf r -
+/// \mathbf c$ and the point in the source's frame) lane by lane over arrays, the batched field,
+/// then each node's terms lane by lane over arrays (compiled with AVX where the CPU has it: no
+/// FMA, so every operation rounds as in the scalar code), and only the additions into the sums
+/// in node order.
 #[inline(never)]
 pub(crate) fn lamina_sums<P: Potential + ?Sized>(
     nodes: &LaminaNodes,
     source: &P,
     map: &FrameMap,
 ) -> LaminaSums {
-    let n = nodes.normal();
+    #[cfg(target_arch = "x86_64")]
+    let avx = std::arch::is_x86_feature_detected!("avx");
+    #[cfg(not(target_arch = "x86_64"))]
+    let avx = false;
+    lamina_sums_lanes(nodes, source, map, avx)
+}
+
+/// [`lamina_sums`] with the lane passes compiled with AVX (`avx`, which the CPU must then
+/// support) or without.
+#[inline(always)]
+fn lamina_sums_lanes<P: Potential + ?Sized>(
+    nodes: &LaminaNodes,
+    source: &P,
+    map: &FrameMap,
+    avx: bool,
+) -> LaminaSums {
     let c = nodes.centre();
+    let mut lanes = LaminaLanes::new(*map, c, nodes.normal());
     let mut potential = CompensatedSum::new();
     let mut normal_acc = CompensatedSum::new();
     let mut normal_moment = CompensatedSum3::new();
     let mut acc = CompensatedSum3::new();
     let mut moment = CompensatedSum3::new();
     let mut sizes = LaminaMagnitudes::default();
+    let mut fields = [Field {
+        potential: 0.0,
+        acceleration: Vec3::zeros(),
+    }; BLOCK];
     for (block_points, block_weights) in nodes
         .area_points()
         .chunks(BLOCK)
         .zip(nodes.area_weights().chunks(BLOCK))
     {
-        let mut block = LaminaBlock::default();
-        let fields = block_fields::<P, true>(block_points, source, map);
-        for ((r, &w), field) in block_points.iter().zip(block_weights).zip(&fields) {
-            add_lamina_area_node(&mut block, &mut sizes, field, map, &(r - c), &n, w);
+        let n = block_points.len().min(block_weights.len());
+        if avx {
+            // SAFETY: `avx` only where AVX was detected on this CPU (std caches the answer).
+            #[cfg(target_arch = "x86_64")]
+            unsafe {
+                lanes.area_nodes_avx(block_points, block_weights)
+            };
+        } else {
+            lanes.area_nodes(block_points, block_weights);
         }
+        source.fields_into(&lanes.mapped[..n], &mut fields[..n]);
+        if avx {
+            // SAFETY: as above.
+            #[cfg(target_arch = "x86_64")]
+            unsafe {
+                lanes.area_terms_avx(&fields)
+            };
+        } else {
+            lanes.area_terms(&fields);
+        }
+        let block = lanes.area_sum(&mut sizes, n);
         potential.add(block.potential);
         normal_acc.add(block.normal_acceleration);
         normal_moment.add(&block.normal_moment);
@@ -794,15 +837,18 @@ pub(crate) fn lamina_sums<P: Potential + ?Sized>(
     let mut rim = CompensatedSum3::new();
     // ∮ ν̂ dl = 0 around the rim: the potential at the centre comes out of the rim sum.
     let reference = source.potential(&map.apply(&c));
+    let mut potentials = [0.0; BLOCK];
     for (block_points, block_normals) in nodes
         .rim_points()
         .chunks(BLOCK)
         .zip(nodes.rim_weighted_normals().chunks(BLOCK))
     {
+        let n = block_points.len().min(block_normals.len());
+        lanes.rim_nodes(block_points);
+        source.potentials_into(&lanes.mapped[..n], &mut potentials[..n]);
         let mut block = LaminaBlock::default();
-        let fields = block_fields::<P, false>(block_points, source, map);
-        for (field, nu) in fields.iter().zip(block_normals) {
-            add_lamina_rim_node(&mut block, &mut sizes, field.potential, reference, nu);
+        for (&phi, nu) in potentials[..n].iter().zip(block_normals) {
+            add_lamina_rim_node(&mut block, &mut sizes, phi, reference, nu);
         }
         rim.add(&block.rim_potential_flux);
     }
@@ -815,6 +861,148 @@ pub(crate) fn lamina_sums<P: Potential + ?Sized>(
         rim_potential_flux: rim.value(),
         force_magnitude: sizes.force,
         moment_magnitude: sizes.moment,
+    }
+}
+
+/// One block of [`lamina_sums`] by component (struct of arrays): the nodes' positions
+/// $\mathbf x$ from the centre, weights, points in the source's frame and terms.
+#[derive(Debug, Clone, Copy)]
+struct LaminaLanes {
+    map: FrameMap,
+    centre: Vec3,
+    normal: Vec3,
+    x: [[Real; BLOCK]; 3],
+    w: [Real; BLOCK],
+    mapped: [Vec3; BLOCK],
+    potential: [Real; BLOCK],
+    normal_acceleration: [Real; BLOCK],
+    normal_moment: [[Real; BLOCK]; 3],
+    acceleration: [[Real; BLOCK]; 3],
+    moment: [[Real; BLOCK]; 3],
+    size_force: [Real; BLOCK],
+    size_moment: [Real; BLOCK],
+}
+
+impl LaminaLanes {
+    fn new(map: FrameMap, centre: Vec3, normal: Vec3) -> Self {
+        let zero = [0.0; BLOCK];
+        Self {
+            map,
+            centre,
+            normal,
+            x: [zero; 3],
+            w: zero,
+            mapped: [Vec3::zeros(); BLOCK],
+            potential: zero,
+            normal_acceleration: zero,
+            normal_moment: [zero; 3],
+            acceleration: [zero; 3],
+            moment: [zero; 3],
+            size_force: zero,
+            size_moment: zero,
+        }
+    }
+
+    /// The block's area nodes (at most [`BLOCK`]): $\mathbf x = \mathbf r - \mathbf c$, the
+    /// weight and $M\mathbf r + \mathbf t$ ([`FrameMap::apply`], the same operations).
+    #[inline(always)]
+    fn area_nodes(&mut self, points: &[Vec3], weights: &[Real]) {
+        let (m, t, c) = (&self.map.rotation, &self.map.offset, &self.centre);
+        for (k, (r, &w)) in points.iter().zip(weights).take(BLOCK).enumerate() {
+            let (px, py, pz) = (r.x, r.y, r.z);
+            self.x[0][k] = px - c.x;
+            self.x[1][k] = py - c.y;
+            self.x[2][k] = pz - c.z;
+            self.w[k] = w;
+            self.mapped[k] = Vec3::new(
+                m[(0, 0)] * px + m[(0, 1)] * py + m[(0, 2)] * pz + t.x,
+                m[(1, 0)] * px + m[(1, 1)] * py + m[(1, 2)] * pz + t.y,
+                m[(2, 0)] * px + m[(2, 1)] * py + m[(2, 2)] * pz + t.z,
+            );
+        }
+    }
+
+    /// [`LaminaLanes::area_nodes`] compiled with AVX.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn area_nodes_avx(&mut self, points: &[Vec3], weights: &[Real]) {
+        self.area_nodes(points, weights);
+    }
+
+    /// The block's rim points in the source's frame ([`FrameMap::apply`]).
+    #[inline(always)]
+    fn rim_nodes(&mut self, points: &[Vec3]) {
+        for (mapped, r) in self.mapped.iter_mut().zip(points) {
+            *mapped = self.map.apply(r);
+        }
+    }
+
+    /// Each area node's terms (those of [`add_lamina_area_node`], the same operations in the
+    /// same order), from the block's fields; every lane, the ones past the block's end too
+    /// (never summed).
+    #[inline(always)]
+    fn area_terms(&mut self, fields: &[Field; BLOCK]) {
+        let m = &self.map.rotation;
+        let (nx, ny, nz) = (self.normal.x, self.normal.y, self.normal.z);
+        for (k, field) in fields.iter().enumerate() {
+            let (xx, xy, xz) = (self.x[0][k], self.x[1][k], self.x[2][k]);
+            let w = self.w[k];
+            // a = Mᵀ g: the acceleration in the table frame (`FrameMap::back`).
+            let g = &field.acceleration;
+            let ax = m[(0, 0)] * g.x + m[(1, 0)] * g.y + m[(2, 0)] * g.z;
+            let ay = m[(0, 1)] * g.x + m[(1, 1)] * g.y + m[(2, 1)] * g.z;
+            let az = m[(0, 2)] * g.x + m[(1, 2)] * g.y + m[(2, 2)] * g.z;
+            let an = ax * nx + ay * ny + az * nz;
+            let w_an = w * an;
+            self.potential[k] = w * field.potential;
+            self.normal_acceleration[k] = w_an;
+            // x × n̂, then x × a.
+            self.normal_moment[0][k] = (xy * nz - xz * ny) * w_an;
+            self.normal_moment[1][k] = (xz * nx - xx * nz) * w_an;
+            self.normal_moment[2][k] = (xx * ny - xy * nx) * w_an;
+            self.acceleration[0][k] = ax * w;
+            self.acceleration[1][k] = ay * w;
+            self.acceleration[2][k] = az * w;
+            self.moment[0][k] = (xy * az - xz * ay) * w;
+            self.moment[1][k] = (xz * ax - xx * az) * w;
+            self.moment[2][k] = (xx * ay - xy * ax) * w;
+            let w_abs_an = w * an.abs();
+            self.size_force[k] = w_abs_an;
+            self.size_moment[k] = w_abs_an * (xx * xx + xy * xy + xz * xz).sqrt();
+        }
+    }
+
+    /// [`LaminaLanes::area_terms`] compiled with AVX.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn area_terms_avx(&mut self, fields: &[Field; BLOCK]) {
+        self.area_terms(fields);
+    }
+
+    /// The first `n` area nodes' terms added in node order: the block's sums, and the
+    /// magnitudes into `sizes`.
+    #[inline(always)]
+    fn area_sum(&self, sizes: &mut LaminaMagnitudes, n: usize) -> LaminaBlock {
+        let mut block = LaminaBlock::default();
+        let lane = |v: &[[Real; BLOCK]; 3], k: usize| Vec3::new(v[0][k], v[1][k], v[2][k]);
+        for k in 0..n.min(BLOCK) {
+            block.potential += self.potential[k];
+            block.normal_acceleration += self.normal_acceleration[k];
+            block.normal_moment += lane(&self.normal_moment, k);
+            block.acceleration += lane(&self.acceleration, k);
+            block.moment += lane(&self.moment, k);
+            sizes.force += self.size_force[k];
+            sizes.moment += self.size_moment[k];
+        }
+        block
     }
 }
 
@@ -931,6 +1119,160 @@ mod tests {
         let table = solid_table_sums::<_, false, true>(&SolidTable::new(nodes), &source, &map);
         assert_eq!(generic, table);
         assert!(generic.energy_flux < 0.0 && generic.potential_moment_magnitude > 0.0);
+    }
+
+    /// The lamina loop node by node through [`add_lamina_area_node`] and
+    /// [`add_lamina_rim_node`] (the form before the loop went by arrays): the reference for
+    /// the bit-for-bit test.
+    fn lamina_node_by_node<P: Potential + ?Sized>(
+        nodes: &LaminaNodes,
+        source: &P,
+        map: &FrameMap,
+    ) -> LaminaSums {
+        let (n, c) = (nodes.normal(), nodes.centre());
+        let mut potential = CompensatedSum::new();
+        let mut normal_acc = CompensatedSum::new();
+        let mut normal_moment = CompensatedSum3::new();
+        let mut acc = CompensatedSum3::new();
+        let mut moment = CompensatedSum3::new();
+        let mut sizes = LaminaMagnitudes::default();
+        for (points, weights) in nodes
+            .area_points()
+            .chunks(BLOCK)
+            .zip(nodes.area_weights().chunks(BLOCK))
+        {
+            let mut block = LaminaBlock::default();
+            for (r, &w) in points.iter().zip(weights) {
+                let field = source.field(&map.apply(r));
+                add_lamina_area_node(&mut block, &mut sizes, &field, map, &(r - c), &n, w);
+            }
+            potential.add(block.potential);
+            normal_acc.add(block.normal_acceleration);
+            normal_moment.add(&block.normal_moment);
+            acc.add(&block.acceleration);
+            moment.add(&block.moment);
+        }
+        let mut rim = CompensatedSum3::new();
+        let reference = source.potential(&map.apply(&c));
+        for (points, normals) in nodes
+            .rim_points()
+            .chunks(BLOCK)
+            .zip(nodes.rim_weighted_normals().chunks(BLOCK))
+        {
+            let mut block = LaminaBlock::default();
+            for (r, nu) in points.iter().zip(normals) {
+                let phi = source.potential(&map.apply(r));
+                add_lamina_rim_node(&mut block, &mut sizes, phi, reference, nu);
+            }
+            rim.add(&block.rim_potential_flux);
+        }
+        LaminaSums {
+            area_potential: potential.value(),
+            area_normal_acceleration: normal_acc.value(),
+            area_normal_moment: normal_moment.value(),
+            area_acceleration: acc.value(),
+            area_moment: moment.value(),
+            rim_potential_flux: rim.value(),
+            force_magnitude: sizes.force,
+            moment_magnitude: sizes.moment,
+        }
+    }
+
+    fn lamina_bits(s: &LaminaSums) -> Vec<u64> {
+        let vectors = [
+            s.area_normal_moment,
+            s.area_acceleration,
+            s.area_moment,
+            s.rim_potential_flux,
+        ];
+        let scalars = [
+            s.area_potential,
+            s.area_normal_acceleration,
+            s.force_magnitude,
+            s.moment_magnitude,
+        ];
+        vectors
+            .iter()
+            .flat_map(|v| v.iter().copied().collect::<Vec<_>>())
+            .chain(scalars)
+            .map(Real::to_bits)
+            .collect()
+    }
+
+    /// The array form of [`lamina_sums`] (with and without AVX) equals the node-by-node form
+    /// bit for bit (every sum and magnitude), on random tables (random radii, angles and
+    /// weights, rows of different lengths so that blocks are full and partial, turned and
+    /// moved so that the centre and normal are general) in random poses of an ellipsoid
+    /// (batched field), a uniform disk (batched field) and a point mass.
+    #[test]
+    fn the_lamina_array_loop_equals_the_node_loop_bit_for_bit() {
+        use surfgrav_potentials::{Ellipsoid, PointMass, UniformDisk};
+        use surfgrav_surfaces::lamina::Lamina;
+        let mut state = 29u64;
+        let ellipsoid = Ellipsoid::new(1.1, 0.7, 0.4, 2.0).unwrap();
+        let disk = UniformDisk::new(0.9, 1.3).unwrap();
+        let point = PointMass::new(1.5).unwrap();
+        let sources: [&dyn Potential; 3] = [&ellipsoid, &disk, &point];
+        #[cfg(target_arch = "x86_64")]
+        let avx = std::arch::is_x86_feature_detected!("avx");
+        #[cfg(not(target_arch = "x86_64"))]
+        let avx = false;
+        let mut compared = 0;
+        for case in 0..40 {
+            let lamina = Lamina::new(0.5 + next(&mut state).abs()).unwrap();
+            let radius = lamina.radius();
+            let angles: Vec<(Real, Real, Real)> = (0..23)
+                .map(|_| {
+                    let phi = 4.0 * next(&mut state);
+                    (phi.cos(), phi.sin(), 0.3 + next(&mut state).abs())
+                })
+                .collect();
+            // Rows of 0 to 22 angles: 16 n + 7 nodes in all for case 0, otherwise random.
+            let rows: Vec<(Real, Real, std::ops::Range<usize>)> = (0..1 + case % 7)
+                .map(|j| {
+                    let a = (16.0 * next(&mut state).abs()) as usize;
+                    let len = if case == 0 {
+                        16 + 7 * (j == 0) as usize
+                    } else {
+                        (7.0 * next(&mut state).abs()) as usize
+                    };
+                    (
+                        radius * next(&mut state).abs(),
+                        0.1 + next(&mut state).abs(),
+                        a..a + len,
+                    )
+                })
+                .collect();
+            let rim: Vec<(Real, Real, Real)> = (0..(case % 37))
+                .map(|_| {
+                    let phi = 4.0 * next(&mut state);
+                    (phi.cos(), phi.sin(), 0.2 + next(&mut state).abs())
+                })
+                .collect();
+            let mut body = LaminaNodes::default();
+            lamina.fill_rows(&angles, &rows, &rim, &mut body);
+            let turn = Rotation3::new(vector(&mut state) * 2.0);
+            let nodes = body.transformed(&turn, &vector(&mut state)).unwrap();
+            let pose = Pose::new(
+                vector(&mut state) * 2.0 + Vec3::new(3.0, 0.0, 0.0),
+                vector(&mut state),
+            );
+            let map = FrameMap::between(&Pose::identity(), &pose).unwrap();
+            for source in sources {
+                let reference = lamina_node_by_node(&nodes, source, &map);
+                let plain = lamina_sums_lanes(&nodes, source, &map, false);
+                let chosen = lamina_sums(&nodes, source, &map);
+                assert_eq!(lamina_bits(&plain), lamina_bits(&reference), "case {case}");
+                assert_eq!(
+                    lamina_bits(&chosen),
+                    lamina_bits(&reference),
+                    "case {case}, avx {avx}"
+                );
+                assert!(reference.force_magnitude.is_finite());
+                compared += usize::from(!nodes.area_points().is_empty());
+            }
+        }
+        assert!(compared > 100);
     }
 
     /// [`SolidTotals`] (side by side, a selection for Neumaier's branch) equals
