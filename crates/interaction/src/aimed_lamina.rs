@@ -601,11 +601,15 @@ pub(crate) fn lamina_aim(
     // Where the singular set runs near along a stretch, every 1-D rule is planned against
     // points spread along it (a curve's neighbouring points, off the clustering point, limit
     // a rule clustered for the nearest one); otherwise against q and q_rim alone.
-    let (points, len) = near_stretch(radius, &q, &q_rim, &samples);
     // On a common axis the singular points nearest the disk form a circle about its centre,
     // all at the same radius and height: q alone stands for them.
     let coaxial = super::coaxial_pole(&axes, y, map).is_some();
-    let stretch = &points[..if len > 2 && !coaxial { len } else { 0 }];
+    let (points, len) = if coaxial {
+        ([(0.0, 0.0, 0.0); MAX_SINGULAR], 0)
+    } else {
+        near_stretch(radius, &q, &q_rim, &samples)
+    };
+    let stretch = &points[..if len > 2 { len } else { 0 }];
     // The stretch model needs no margin for a curve where its samples resolve the curve near
     // q (the narrowest angular singularity at least the samples' spacing).
     let margin = if !stretch.is_empty() && eta >= std::f64::consts::TAU / RIM_SAMPLES as Real {
@@ -618,11 +622,15 @@ pub(crate) fn lamina_aim(
         d.min(std::f64::consts::TAU - d)
     };
     // The angular singularities of the stretch on its narrowest circles, widened by 2^k.
+    let mut narrowest = [Complex::new(0.0, 0.0); MAX_SINGULAR];
+    for (o, &(phi, s_k, h_k)) in narrowest.iter_mut().zip(stretch) {
+        let width = angular_width((s_k * s_k + h_k * h_k).sqrt().min(radius), s_k, h_k);
+        *o = Complex::new(offset(phi, angle_centre), width);
+    }
     let angular = |k: i32| {
-        let mut out = [Complex::new(0.0, 0.0); MAX_SINGULAR];
-        for (o, &(phi, s_k, h_k)) in out.iter_mut().zip(stretch) {
-            let width = angular_width((s_k * s_k + h_k * h_k).sqrt().min(radius), s_k, h_k);
-            *o = Complex::new(offset(phi, angle_centre), width * Real::from(k).exp2());
+        let mut out = narrowest;
+        for o in &mut out {
+            o.im *= Real::from(k).exp2();
         }
         out
     };
@@ -633,19 +641,6 @@ pub(crate) fn lamina_aim(
             ClusteredSide::plan_many(PI, &angular(k)[..stretch.len()], tolerance)
         }
     };
-    let angle = plan_angle(0).with_margin(margin);
-    let mut angles = [angle; ANGLE_TABLE];
-    for k in 1..ANGLE_TABLE {
-        if eta * Real::from(k as i32 - 1).exp2() > WIDEST_ETA {
-            // Beyond this the count no longer falls: the wider entries repeat the last.
-            angles[k] = angles[k - 1];
-            continue;
-        }
-        let planned = plan_angle(k as i32).with_margin(margin);
-        if planned.predicted < angle.predicted {
-            angles[k] = planned;
-        }
-    }
     // A radial side from `origin` (`sign` -1: inward, +1: outward) of `length`, singular at
     // `singular` (q's model) and at every point of the stretch.
     let radial = |origin: Real, sign: Real, length: Real, singular: Complex<Real>| {
@@ -675,16 +670,6 @@ pub(crate) fn lamina_aim(
         )
     };
     let rim_centre = q_rim.y.atan2(q_rim.x);
-    let rim = if stretch.is_empty() {
-        ClusteredSide::plan(PI, Complex::new(0.0, rim_eta), tolerance)
-    } else {
-        let mut all = [Complex::new(0.0, 0.0); MAX_SINGULAR];
-        for (o, &(phi, s_k, h_k)) in all.iter_mut().zip(stretch) {
-            *o = Complex::new(offset(phi, rim_centre), angular_width(radius, s_k, h_k));
-        }
-        ClusteredSide::plan_many(PI, &all[..stretch.len()], tolerance)
-    }
-    .with_margin(RIM_MARGIN);
     let (inward, outward) = (
         inward.map(|side| side.with_margin(margin)),
         outward.map(|side| side.with_margin(margin)),
@@ -700,6 +685,29 @@ pub(crate) fn lamina_aim(
         };
         (plain, [plain; ANGLE_TABLE], plain)
     } else {
+        let angle = plan_angle(0).with_margin(margin);
+        let mut angles = [angle; ANGLE_TABLE];
+        for k in 1..ANGLE_TABLE {
+            if eta * Real::from(k as i32 - 1).exp2() > WIDEST_ETA {
+                // Beyond this the count no longer falls: the wider entries repeat the last.
+                angles[k] = angles[k - 1];
+                continue;
+            }
+            let planned = plan_angle(k as i32).with_margin(margin);
+            if planned.predicted < angle.predicted {
+                angles[k] = planned;
+            }
+        }
+        let rim = if stretch.is_empty() {
+            ClusteredSide::plan(PI, Complex::new(0.0, rim_eta), tolerance)
+        } else {
+            let mut all = [Complex::new(0.0, 0.0); MAX_SINGULAR];
+            for (o, &(phi, s_k, h_k)) in all.iter_mut().zip(stretch) {
+                *o = Complex::new(offset(phi, rim_centre), angular_width(radius, s_k, h_k));
+            }
+            ClusteredSide::plan_many(PI, &all[..stretch.len()], tolerance)
+        }
+        .with_margin(RIM_MARGIN);
         (angle, angles, rim)
     };
     let largest = [Some(angle), inward, outward]
