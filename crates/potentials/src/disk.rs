@@ -77,10 +77,11 @@
 //!
 //! # Batches
 //!
-//! [`Potential::fields_into`] and [`Potential::potentials_into`] take four points at a time:
-//! the Gauss iterations of the near ones and the exterior series of the far ones run side by
-//! side in lanes (one vector instruction per operation), each lane frozen once its own
-//! iteration or series has stopped, so that every result is bit for bit the point's own
+//! [`Potential::fields_into`] and [`Potential::potentials_into`] sort each sixteen points into
+//! near and far ones and take them four at a time: the Gauss iterations of the near ones and
+//! the exterior series of the far ones (two groups of four interleaved) run side by side in
+//! lanes (one vector instruction per operation), each lane frozen once its own iteration or
+//! series has stopped, so that every result is bit for bit the point's own
 //! [`Potential::field`].
 //!
 //! # Accuracy
@@ -106,6 +107,9 @@ use surfgrav_quadrature::two_sum;
 /// (measured: the closed form's error grows as ~(r/R)² ε and reaches 4e-15 at r = 2R; the
 /// series needs 29 terms there).
 const FAR_FIELD_RADII: Real = 2.0;
+
+/// Points of a batch sorted into far and near groups together.
+const SEGMENT: usize = 4 * LANES;
 
 /// Number of terms of the exterior series kept (29 are needed at r = 2R).
 const SERIES_TERMS: usize = 32;
@@ -319,56 +323,78 @@ impl UniformDisk {
         }
     }
 
-    /// [`UniformDisk::far_field`] for up to [`LANES`] points (`Some((point, dist))`) side by
-    /// side: the same terms in the same order, each lane's sums frozen once its own series
-    /// has stopped; the entries of the `None` lanes are meaningless.
+    /// [`UniformDisk::far_field`] for up to `G` groups of [`LANES`] points (`Some((point,
+    /// dist))`) side by side: the same terms in the same order, each lane's sums frozen once its
+    /// own series has stopped; the entries of the `None` lanes are meaningless. The groups'
+    /// recurrences are independent chains, so two groups interleave in the processor (one
+    /// group's series is a chain of dependent multiplications and subtractions).
     #[inline(always)]
-    fn far_field_lanes(&self, points: &[Option<(Vec3, Real)>; LANES]) -> [Field; LANES] {
+    fn far_field_lanes<const G: usize>(
+        &self,
+        points: &[[Option<(Vec3, Real)>; LANES]; G],
+    ) -> [[Field; LANES]; G] {
         let tables = series_tables();
-        let dist = F4(std::array::from_fn(|l| points[l].map_or(1.0, |p| p.1)));
-        let u = F4(std::array::from_fn(|l| points[l].map_or(0.0, |p| p.0.z))) / dist;
-        let ratio = self.radius / dist;
-        let t = ratio * ratio;
-        let (mut p_even, mut p_odd) = (F4::splat(1.0), u);
-        let (mut d_even, mut d_odd) = (F4::splat(0.0), F4::splat(1.0));
         let zero = F4::splat(0.0);
-        let (mut sum_potential, mut sum_axial, mut sum_radial) = (zero, zero, zero);
-        let mut t_power = F4::splat(1.0);
-        let mut active = M4::from_flags(std::array::from_fn(|l| points[l].is_some()));
+        let dist: [F4; G] =
+            std::array::from_fn(|g| F4(std::array::from_fn(|l| points[g][l].map_or(1.0, |p| p.1))));
+        let u: [F4; G] = std::array::from_fn(|g| {
+            F4(std::array::from_fn(|l| points[g][l].map_or(0.0, |p| p.0.z))) / dist[g]
+        });
+        let t: [F4; G] = std::array::from_fn(|g| {
+            let ratio = self.radius / dist[g];
+            ratio * ratio
+        });
+        let (mut p_even, mut p_odd) = ([F4::splat(1.0); G], u);
+        let mut d_odd = [F4::splat(1.0); G];
+        let (mut sum_potential, mut sum_axial, mut sum_radial) = ([zero; G], [zero; G], [zero; G]);
+        let mut t_power = [F4::splat(1.0); G];
+        let mut active: [M4; G] = std::array::from_fn(|g| {
+            M4::from_flags(std::array::from_fn(|l| points[g][l].is_some()))
+        });
         for l in 0..SERIES_TERMS {
-            let c = tables.coefficient[l] * t_power;
             let k = 2 * l + 1;
-            sum_potential = active.select(sum_potential + c * p_even, sum_potential);
-            sum_axial = active.select(sum_axial + c * tables.odd_degree[l] * p_odd, sum_axial);
-            sum_radial = active.select(sum_radial + c * d_odd, sum_radial);
-            let done = (c.abs() * (tables.odd_degree[l] + 1.0)).lt(F4::splat(1e-17));
-            active = active.and(done.not());
-            if !active.any() {
+            let mut any = false;
+            for g in 0..G {
+                let c = tables.coefficient[l] * t_power[g];
+                let on = active[g];
+                sum_potential[g] = on.select(sum_potential[g] + c * p_even[g], sum_potential[g]);
+                sum_axial[g] = on.select(
+                    sum_axial[g] + c * tables.odd_degree[l] * p_odd[g],
+                    sum_axial[g],
+                );
+                sum_radial[g] = on.select(sum_radial[g] + c * d_odd[g], sum_radial[g]);
+                let done = (c.abs() * (tables.odd_degree[l] + 1.0)).lt(F4::splat(1e-17));
+                active[g] = on.and(done.not());
+                any |= active[g].any();
+            }
+            if !any {
                 break;
             }
-            let p_next_even = tables.rec_a[k] * u * p_odd - tables.rec_b[k] * p_even;
-            let d_next_even = d_even + tables.rec_c[k] * p_odd;
-            let p_next_odd = tables.rec_a[k + 1] * u * p_next_even - tables.rec_b[k + 1] * p_odd;
-            let d_next_odd = d_odd + tables.rec_c[k + 1] * p_next_even;
-            p_even = p_next_even;
-            p_odd = p_next_odd;
-            d_even = d_next_even;
-            d_odd = d_next_odd;
-            t_power = t_power * t;
-        }
-        let gm_over_r = self.gm / dist;
-        let gm_over_r2 = gm_over_r / dist;
-        std::array::from_fn(|l| {
-            let p = points[l].map_or(Vec3::zeros(), |p| p.0);
-            let (dist, gm_over_r, gm_over_r2) = (dist.0[l], gm_over_r.0[l], gm_over_r2.0[l]);
-            Field {
-                potential: -gm_over_r * sum_potential.0[l],
-                acceleration: Vec3::new(
-                    -gm_over_r2 * (p.x / dist) * sum_radial.0[l],
-                    -gm_over_r2 * (p.y / dist) * sum_radial.0[l],
-                    -gm_over_r2 * sum_axial.0[l],
-                ),
+            for g in 0..G {
+                let p_next_even = tables.rec_a[k] * u[g] * p_odd[g] - tables.rec_b[k] * p_even[g];
+                let p_next_odd =
+                    tables.rec_a[k + 1] * u[g] * p_next_even - tables.rec_b[k + 1] * p_odd[g];
+                d_odd[g] = d_odd[g] + tables.rec_c[k + 1] * p_next_even;
+                p_even[g] = p_next_even;
+                p_odd[g] = p_next_odd;
+                t_power[g] = t_power[g] * t[g];
             }
+        }
+        std::array::from_fn(|g| {
+            let gm_over_r = self.gm / dist[g];
+            let gm_over_r2 = gm_over_r / dist[g];
+            std::array::from_fn(|l| {
+                let p = points[g][l].map_or(Vec3::zeros(), |p| p.0);
+                let (dist, gm_over_r, gm_over_r2) = (dist[g].0[l], gm_over_r.0[l], gm_over_r2.0[l]);
+                Field {
+                    potential: -gm_over_r * sum_potential[g].0[l],
+                    acceleration: Vec3::new(
+                        -gm_over_r2 * (p.x / dist) * sum_radial[g].0[l],
+                        -gm_over_r2 * (p.y / dist) * sum_radial[g].0[l],
+                        -gm_over_r2 * sum_axial[g].0[l],
+                    ),
+                }
+            })
         })
     }
 
@@ -378,9 +404,9 @@ impl UniformDisk {
         let u = p.z / dist;
         let ratio = self.radius / dist;
         let t = ratio * ratio;
-        // P_{2l}, P_{2l+1} and their derivatives P'_{2l}, P'_{2l+1} at u.
+        // P_{2l}, P_{2l+1} and the derivative P'_{2l+1} at u.
         let (mut p_even, mut p_odd) = (1.0, u);
-        let (mut d_even, mut d_odd) = (0.0, 1.0);
+        let mut d_odd = 1.0;
         let (mut sum_potential, mut sum_axial, mut sum_radial) = (0.0, 0.0, 0.0);
         let mut t_power = 1.0;
         for l in 0..SERIES_TERMS {
@@ -393,15 +419,13 @@ impl UniformDisk {
             if c.abs() * (tables.odd_degree[l] + 1.0) < 1e-17 {
                 break;
             }
-            // P_{k+1} = a_k u P_k − b_k P_{k−1} and P'_{k+1} = P'_{k−1} + (2k+1) P_k, twice.
+            // P_{k+1} = a_k u P_k − b_k P_{k−1} twice, and P'_{k+2} = P'_k + (2k+3) P_{k+1}
+            // (the sums need the odd degrees' derivatives only).
             let p_next_even = tables.rec_a[k] * u * p_odd - tables.rec_b[k] * p_even;
-            let d_next_even = d_even + tables.rec_c[k] * p_odd;
             let p_next_odd = tables.rec_a[k + 1] * u * p_next_even - tables.rec_b[k + 1] * p_odd;
-            let d_next_odd = d_odd + tables.rec_c[k + 1] * p_next_even;
+            d_odd += tables.rec_c[k + 1] * p_next_even;
             p_even = p_next_even;
             p_odd = p_next_odd;
-            d_even = d_next_even;
-            d_odd = d_next_odd;
             t_power *= t;
         }
         let gm_over_r = self.gm / dist;
@@ -440,48 +464,65 @@ struct NearPoint {
 }
 
 impl crate::lanes::Batched for UniformDisk {
-    /// The fields at `points` into `out`: [`LANES`] points at a time, whose elliptic integrals
-    /// ([`gauss_lanes`]) iterate side by side; each result bit for bit [`Potential::field`]'s.
+    /// The fields at `points` into `out`, [`SEGMENT`] points at a time: the far points of a
+    /// segment gathered into groups of [`LANES`] whose exterior series run side by side, two
+    /// groups at a time ([`UniformDisk::far_field_lanes`]), and the near ones into groups whose
+    /// elliptic integrals ([`gauss_lanes`]) iterate side by side; each result bit for bit
+    /// [`Potential::field`]'s.
     #[inline(always)]
     fn batch<T>(&self, points: &[Vec3], out: &mut [T], pick: impl Fn(Field) -> T) {
         let n = points.len().min(out.len());
         let (points, out) = (&points[..n], &mut out[..n]);
-        for (chunk, target) in points.chunks(LANES).zip(out.chunks_mut(LANES)) {
-            let mut near = [None; LANES];
-            let mut far = [None; LANES];
-            for (l, r) in chunk.iter().enumerate() {
+        for (segment, target) in points.chunks(SEGMENT).zip(out.chunks_mut(SEGMENT)) {
+            // Indices and inputs of the far and near points, in order.
+            let mut far = [[None; LANES]; SEGMENT / LANES];
+            let mut far_index = [0; SEGMENT];
+            let mut near = [None; SEGMENT];
+            let mut near_index = [0; SEGMENT];
+            let (mut far_count, mut near_count) = (0, 0);
+            for (i, r) in segment.iter().enumerate() {
                 let rho = hypot(r.x, r.y);
                 let dist = hypot(rho, r.z);
                 if dist >= FAR_FIELD_RADII * self.radius {
-                    far[l] = Some((*r, dist));
+                    far[far_count / LANES][far_count % LANES] = Some((*r, dist));
+                    far_index[far_count] = i;
+                    far_count += 1;
                 } else {
-                    near[l] = Some(self.near_point(r, rho));
+                    near[near_count] = Some(self.near_point(r, rho));
+                    near_index[near_count] = i;
+                    near_count += 1;
                 }
             }
-            if far.iter().any(Option::is_some) {
-                let fields = self.far_field_lanes(&far);
-                for (l, point) in far.iter().enumerate() {
-                    if point.is_some() {
-                        target[l] = pick(fields[l]);
+            let groups = far_count.div_ceil(LANES);
+            let mut g = 0;
+            while g < groups {
+                let fields: [[Field; LANES]; 2] = if g + 1 < groups {
+                    self.far_field_lanes(&[far[g], far[g + 1]])
+                } else {
+                    let [one] = self.far_field_lanes(&[far[g]]);
+                    [one, one]
+                };
+                let end = far_count.min((g + 2) * LANES);
+                for (j, &i) in far_index.iter().enumerate().take(end).skip(g * LANES) {
+                    target[i] = pick(fields[j / LANES - g][j % LANES]);
+                }
+                g += 2;
+            }
+            for (group, indices) in near[..near_count]
+                .chunks(LANES)
+                .zip(near_index[..near_count].chunks(LANES))
+            {
+                let lane = |l: usize| group.get(l).copied().flatten();
+                let kc = F4(std::array::from_fn(|l| lane(l).map_or(1.0, |p| p.kc)));
+                let snc = F4(std::array::from_fn(|l| lane(l).map_or(1.0, |p| p.snc)));
+                let want_pi = M4::from_flags(std::array::from_fn(|l| {
+                    lane(l).is_some_and(|p| p.use_pi_track)
+                }));
+                let g = gauss_lanes(kc, snc, want_pi);
+                for (l, (point, &i)) in group.iter().zip(indices).enumerate() {
+                    if let Some(point) = point {
+                        target[i] = pick(self.near_finish(point, &g[l]));
                     }
-                }
-            }
-            if near.iter().all(Option::is_none) {
-                continue;
-            }
-            let kc = F4(std::array::from_fn(|l| {
-                near[l].as_ref().map_or(1.0, |p| p.kc)
-            }));
-            let snc = F4(std::array::from_fn(|l| {
-                near[l].as_ref().map_or(1.0, |p| p.snc)
-            }));
-            let want_pi = M4::from_flags(std::array::from_fn(|l| {
-                near[l].as_ref().is_some_and(|p| p.use_pi_track)
-            }));
-            let g = gauss_lanes(kc, snc, want_pi);
-            for (l, point) in near.iter().enumerate() {
-                if let Some(point) = point {
-                    target[l] = pick(self.near_finish(point, &g[l]));
                 }
             }
         }
