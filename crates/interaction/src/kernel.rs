@@ -14,7 +14,7 @@
 use super::error::InteractionError;
 use nalgebra::{Matrix3, Rotation3};
 use surfgrav_potentials::{Field, Pose, PoseExt, Potential};
-use surfgrav_surfaces::sum::{CompensatedSum, CompensatedSum3};
+use surfgrav_surfaces::sum::CompensatedSum3;
 use surfgrav_surfaces::{LaminaNodes, Real, SurfaceNodes, Vec3};
 
 /// Nodes summed plainly before a compensated addition.
@@ -263,7 +263,7 @@ pub(crate) struct SolidBlock {
 /// The compensated totals of [`SolidBlock`]s over a table: every solid loop adds its blocks
 /// here and finishes with the sizes (`FULL`: torques and energy too, otherwise the force parts).
 ///
-/// Neumaier's compensated sums ([`CompensatedSum`], the same operations, so the same bits),
+/// Neumaier's compensated sums ([`CompensatedSum`](surfgrav_surfaces::sum::CompensatedSum), the same operations, so the same bits),
 /// kept side by side in arrays with the branch on the larger magnitude replaced by a selection
 /// between both corrections: the sums of one block are added together, without a branch
 /// that the signs of the sums make unpredictable.
@@ -275,7 +275,8 @@ pub(crate) struct SolidTotals {
     full: Neumaier<7>,
 }
 
-/// `N` compensated sums side by side (Neumaier's, as [`CompensatedSum`]).
+/// `N` compensated sums side by side (Neumaier's, as
+/// [`CompensatedSum`](surfgrav_surfaces::sum::CompensatedSum)).
 #[derive(Debug, Clone, Copy)]
 struct Neumaier<const N: usize> {
     sum: [Real; N],
@@ -290,7 +291,7 @@ impl<const N: usize> Neumaier<N> {
         }
     }
 
-    /// Adds `x[i]` to sum `i`: [`CompensatedSum::add`] with both corrections computed and the
+    /// Adds `x[i]` to sum `i`: [`CompensatedSum::add`](surfgrav_surfaces::sum::CompensatedSum::add) with both corrections computed and the
     /// one for the larger magnitude kept.
     #[inline(always)]
     fn add(&mut self, x: &[Real; N]) {
@@ -303,7 +304,7 @@ impl<const N: usize> Neumaier<N> {
         }
     }
 
-    /// Sum `i`: [`CompensatedSum::value`].
+    /// Sum `i`: [`CompensatedSum::value`](surfgrav_surfaces::sum::CompensatedSum::value).
     fn value(&self, i: usize) -> Real {
         self.sum[i] + self.compensation[i]
     }
@@ -792,11 +793,9 @@ fn lamina_sums_lanes<P: Potential + ?Sized>(
 ) -> LaminaSums {
     let c = nodes.centre();
     let mut lanes = LaminaLanes::new(*map, c, nodes.normal());
-    let mut potential = CompensatedSum::new();
-    let mut normal_acc = CompensatedSum::new();
-    let mut normal_moment = CompensatedSum3::new();
-    let mut acc = CompensatedSum3::new();
-    let mut moment = CompensatedSum3::new();
+    // Potential, normal acceleration, normal moment x, y, z, acceleration x, y, z, moment x,
+    // y, z: the compensated sums side by side (`Neumaier`, the bits of `CompensatedSum`).
+    let mut area = Neumaier::<11>::new();
     let mut sizes = LaminaMagnitudes::default();
     let mut fields = [Field {
         potential: 0.0,
@@ -828,11 +827,20 @@ fn lamina_sums_lanes<P: Potential + ?Sized>(
             lanes.area_terms(&fields);
         }
         let block = lanes.area_sum(&mut sizes, n);
-        potential.add(block.potential);
-        normal_acc.add(block.normal_acceleration);
-        normal_moment.add(&block.normal_moment);
-        acc.add(&block.acceleration);
-        moment.add(&block.moment);
+        let (n, a, m) = (&block.normal_moment, &block.acceleration, &block.moment);
+        area.add(&[
+            block.potential,
+            block.normal_acceleration,
+            n.x,
+            n.y,
+            n.z,
+            a.x,
+            a.y,
+            a.z,
+            m.x,
+            m.y,
+            m.z,
+        ]);
     }
     let mut rim = CompensatedSum3::new();
     // ∮ ν̂ dl = 0 around the rim: the potential at the centre comes out of the rim sum.
@@ -853,11 +861,11 @@ fn lamina_sums_lanes<P: Potential + ?Sized>(
         rim.add(&block.rim_potential_flux);
     }
     LaminaSums {
-        area_potential: potential.value(),
-        area_normal_acceleration: normal_acc.value(),
-        area_normal_moment: normal_moment.value(),
-        area_acceleration: acc.value(),
-        area_moment: moment.value(),
+        area_potential: area.value(0),
+        area_normal_acceleration: area.value(1),
+        area_normal_moment: area.vector(2),
+        area_acceleration: area.vector(5),
+        area_moment: area.vector(8),
         rim_potential_flux: rim.value(),
         force_magnitude: sizes.force,
         moment_magnitude: sizes.moment,
@@ -1027,6 +1035,7 @@ mod tests {
     use super::*;
     use surfgrav_potentials::{Pose, Spheroid};
     use surfgrav_quadrature::{GaussLegendre, PeriodicTrapezoid, Rule1D};
+    use surfgrav_surfaces::sum::CompensatedSum;
     use surfgrav_surfaces::{BorrowedRule, EllipsoidSurface, Interval};
 
     /// A deterministic pseudo-random number in [-1, 1).
