@@ -949,7 +949,7 @@ impl NodeLanes {
     /// $\mathbf W = w\\,\mathrm{diag}(bc, ac, ab)\\,\mathbf s$, $\mathbf r\_Y = M\mathbf x + \mathbf t$.
     #[inline(always)]
     fn nodes(&mut self, d: &GridBlock) {
-        let (f, m, t) = (&self.frame, &self.map.rotation, &self.map.offset);
+        let f = &self.frame;
         let (axes, cofactor) = (&self.axes, &self.cofactor);
         for k in 0..BLOCK {
             let (dx, dy, dz) = (d.x[k], d.y[k], d.z[k]);
@@ -963,11 +963,7 @@ impl NodeLanes {
             self.w[0][k] = cofactor.x * sx * d.weight[k];
             self.w[1][k] = cofactor.y * sy * d.weight[k];
             self.w[2][k] = cofactor.z * sz * d.weight[k];
-            self.mapped[k] = Vec3::new(
-                m[(0, 0)] * px + m[(0, 1)] * py + m[(0, 2)] * pz + t.x,
-                m[(1, 0)] * px + m[(1, 1)] * py + m[(1, 2)] * pz + t.y,
-                m[(2, 0)] * px + m[(2, 1)] * py + m[(2, 2)] * pz + t.z,
-            );
+            self.mapped[k] = self.map.apply_components(px, py, pz);
         }
     }
 

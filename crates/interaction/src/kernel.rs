@@ -61,6 +61,18 @@ impl FrameMap {
         self.rotation * r + self.offset
     }
 
+    /// [`FrameMap::apply`] at $(x, y, z)$, written out by component (the operations of the
+    /// node loops over arrays, which the compiler vectorises across nodes).
+    #[inline(always)]
+    pub(crate) fn apply_components(&self, x: Real, y: Real, z: Real) -> Vec3 {
+        let (m, t) = (&self.rotation, &self.offset);
+        Vec3::new(
+            m[(0, 0)] * x + m[(0, 1)] * y + m[(0, 2)] * z + t.x,
+            m[(1, 0)] * x + m[(1, 1)] * y + m[(1, 2)] * z + t.y,
+            m[(2, 0)] * x + m[(2, 1)] * y + m[(2, 2)] * z + t.z,
+        )
+    }
+
     /// $M^{\mathsf T}\mathbf v$: a source-frame vector in the table frame.
     #[inline]
     pub fn back(&self, v: &Vec3) -> Vec3 {
@@ -915,18 +927,14 @@ impl LaminaLanes {
     /// weight and $M\mathbf r + \mathbf t$ ([`FrameMap::apply`], the same operations).
     #[inline(always)]
     fn area_nodes(&mut self, points: &[Vec3], weights: &[Real]) {
-        let (m, t, c) = (&self.map.rotation, &self.map.offset, &self.centre);
+        let c = &self.centre;
         for (k, (r, &w)) in points.iter().zip(weights).take(BLOCK).enumerate() {
             let (px, py, pz) = (r.x, r.y, r.z);
             self.x[0][k] = px - c.x;
             self.x[1][k] = py - c.y;
             self.x[2][k] = pz - c.z;
             self.w[k] = w;
-            self.mapped[k] = Vec3::new(
-                m[(0, 0)] * px + m[(0, 1)] * py + m[(0, 2)] * pz + t.x,
-                m[(1, 0)] * px + m[(1, 1)] * py + m[(1, 2)] * pz + t.y,
-                m[(2, 0)] * px + m[(2, 1)] * py + m[(2, 2)] * pz + t.z,
-            );
+            self.mapped[k] = self.map.apply_components(px, py, pz);
         }
     }
 
