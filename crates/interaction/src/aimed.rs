@@ -146,7 +146,7 @@ impl SphereGrid {
         let mut index = 0;
         for (&u, &wu) in rule.nodes().iter().zip(rule.weights()) {
             let (theta, dtheta) = if width.is_finite() {
-                let mu = (PI / width).asinh();
+                let mu = cluster_mu(cluster);
                 (width * (mu * u).sinh(), width * mu * (mu * u).cosh())
             } else {
                 // Gauss–Legendre in cos θ = 1 − 2u: dΩ = 2 du dφ.
@@ -267,9 +267,10 @@ pub(crate) fn grid_key(polar: u16, aim: &Aim) -> GridKey {
     }
 }
 
-/// The Gauss–Legendre count whose error bound $\rho^{-2n}$ meets the tolerance.
-fn polar_count(rho: Real, tolerance: Real) -> u16 {
-    let n = (1.0 / tolerance).ln() / (2.0 * rho.max(1.0 + 1e-3).ln());
+/// The Gauss–Legendre count whose error bound $\rho^{-2n}$ meets the tolerance $\tau$
+/// (`log_inverse_tolerance`: $\ln(1/\tau)$).
+fn polar_count(rho: Real, log_inverse_tolerance: Real) -> u16 {
+    let n = log_inverse_tolerance / (2.0 * rho.max(1.0 + 1e-3).ln());
     (n.ceil() as u16).clamp(4, super::rules::MAX_TRANSVERSE)
 }
 
@@ -286,7 +287,7 @@ fn bernstein(theta: Complex<Real>, cluster: u8) -> Real {
         a + (a * a - 1.0).max(0.0).sqrt()
     };
     if table.is_finite() {
-        let mu = (PI / table).asinh();
+        let mu = cluster_mu(cluster);
         let u = asinh(theta / table) / mu;
         // Both branches of the map's inverse: the integrand is even in θ, the map odd in u.
         let one = Complex::new(1.0, 0.0);
@@ -295,6 +296,21 @@ fn bernstein(theta: Complex<Real>, cluster: u8) -> Real {
         // Gauss–Legendre in t = cos θ = 1 − 2u: z = 2u − 1 = −cos θ.
         rho(-theta.cos())
     }
+}
+
+/// The clustering map's $\mu = \operatorname{asinh}(\pi/w)$ for each width $w$ of
+/// [`CLUSTER_WIDTHS`] (computed once; NaN for the product rule, which has no map).
+fn cluster_mu(cluster: u8) -> Real {
+    static TABLE: OnceLock<[Real; CLUSTER_WIDTHS.len()]> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        CLUSTER_WIDTHS.map(|w| {
+            if w.is_finite() {
+                (PI / w).asinh()
+            } else {
+                Real::NAN
+            }
+        })
+    })[usize::from(cluster)]
 }
 
 /// $\operatorname{asinh} z = \ln(z + \sqrt{z^2 + 1})$ (either branch serves [`bernstein`],
@@ -656,6 +672,7 @@ pub(crate) fn aim(
     tolerance: Real,
     loses: &dyn Fn(u8, usize) -> bool,
 ) -> Option<Aim> {
+    let log_inverse_tolerance = (1.0 / tolerance).ln();
     let axes = e.semi_axes();
     // On (or near) a common axis: the pole's point on the axis and Y's singular point nearest
     // to it, if Y's centroid lies within NEAR_AXIS of that distance from the axis.
@@ -709,8 +726,12 @@ pub(crate) fn aim(
     // nearest point alone predicts).
     let set = singular_set(y);
     if matches!(set, SingularSet::Ball(_)) {
-        let polar_for =
-            |cluster: u8| polar_count(bernstein(Complex::new(0.0, width), cluster), tolerance);
+        let polar_for = |cluster: u8| {
+            polar_count(
+                bernstein(Complex::new(0.0, width), cluster),
+                log_inverse_tolerance,
+            )
+        };
         let cluster = if polar_for(0) <= polar_for(clustered) {
             0
         } else {
@@ -767,11 +788,14 @@ pub(crate) fn aim(
             best.is_none_or(|(b, k)| c < b || (c == b && cluster < k)) && !loses(cluster, c)
         };
         // The far hemisphere's count is tabulated: checked before any other point.
-        let antipode = polar_count(antipode_rho(cluster), tolerance);
+        let antipode = polar_count(antipode_rho(cluster), log_inverse_tolerance);
         if !beats(cost(cluster, antipode)) {
             return None;
         }
-        let nearest = polar_count(bernstein(Complex::new(0.0, width), cluster), tolerance);
+        let nearest = polar_count(
+            bernstein(Complex::new(0.0, width), cluster),
+            log_inverse_tolerance,
+        );
         let mut start = nearest.max(antipode);
         if !beats(cost(cluster, start)) {
             return None;
@@ -781,7 +805,8 @@ pub(crate) fn aim(
             if rho.is_nan() {
                 continue;
             }
-            let rim = (RIM_WEIGHT * Real::from(polar_count(rho, tolerance))).ceil() as u16;
+            let rim =
+                (RIM_WEIGHT * Real::from(polar_count(rho, log_inverse_tolerance))).ceil() as u16;
             if rim > start {
                 start = rim;
                 if !beats(cost(cluster, start)) {
