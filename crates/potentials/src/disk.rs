@@ -79,8 +79,8 @@
 //!
 //! [`Potential::fields_into`] and [`Potential::potentials_into`] sort each sixteen points into
 //! near and far ones and take them four at a time: the Gauss iterations of the near ones and
-//! the exterior series of the far ones (two groups of four interleaved) run side by side in
-//! lanes (one vector instruction per operation), each lane frozen once its own iteration or
+//! the exterior series of the far ones run side by side in lanes (one vector instruction per
+//! operation; two groups of four interleaved), each lane frozen once its own iteration or
 //! series has stopped, so that every result is bit for bit the point's own
 //! [`Potential::field`].
 //!
@@ -467,8 +467,8 @@ impl crate::lanes::Batched for UniformDisk {
     /// The fields at `points` into `out`, [`SEGMENT`] points at a time: the far points of a
     /// segment gathered into groups of [`LANES`] whose exterior series run side by side, two
     /// groups at a time ([`UniformDisk::far_field_lanes`]), and the near ones into groups whose
-    /// elliptic integrals ([`gauss_lanes`]) iterate side by side; each result bit for bit
-    /// [`Potential::field`]'s.
+    /// elliptic integrals iterate side by side, also two groups at a time ([`gauss_lanes`]);
+    /// each result bit for bit [`Potential::field`]'s.
     #[inline(always)]
     fn batch<T>(&self, points: &[Vec3], out: &mut [T], pick: impl Fn(Field) -> T) {
         let n = points.len().min(out.len());
@@ -508,25 +508,58 @@ impl crate::lanes::Batched for UniformDisk {
                 }
                 g += 2;
             }
-            for (group, indices) in near[..near_count]
-                .chunks(LANES)
-                .zip(near_index[..near_count].chunks(LANES))
-            {
-                let lane = |l: usize| group.get(l).copied().flatten();
-                let kc = F4(std::array::from_fn(|l| lane(l).map_or(1.0, |p| p.kc)));
-                let snc = F4(std::array::from_fn(|l| lane(l).map_or(1.0, |p| p.snc)));
-                let want_pi = M4::from_flags(std::array::from_fn(|l| {
-                    lane(l).is_some_and(|p| p.use_pi_track)
-                }));
-                let g = gauss_lanes(kc, snc, want_pi);
-                for (l, (point, &i)) in group.iter().zip(indices).enumerate() {
-                    if let Some(point) = point {
-                        target[i] = pick(self.near_finish(point, &g[l]));
+            let groups = near_count.div_ceil(LANES);
+            let mut g = 0;
+            while g < groups {
+                let integrals: [[Gauss; LANES]; 2] = if g + 1 < groups {
+                    gauss_lanes(
+                        [near_kc(&near, g), near_kc(&near, g + 1)],
+                        [near_snc(&near, g), near_snc(&near, g + 1)],
+                        [near_want_pi(&near, g), near_want_pi(&near, g + 1)],
+                    )
+                } else {
+                    let [one] = gauss_lanes(
+                        [near_kc(&near, g)],
+                        [near_snc(&near, g)],
+                        [near_want_pi(&near, g)],
+                    );
+                    [one, one]
+                };
+                let end = near_count.min((g + 2) * LANES);
+                for (j, &i) in near_index.iter().enumerate().take(end).skip(g * LANES) {
+                    if let Some(point) = &near[j] {
+                        target[i] =
+                            pick(self.near_finish(point, &integrals[j / LANES - g][j % LANES]));
                     }
                 }
+                g += 2;
             }
         }
     }
+}
+
+/// The complementary moduli of near group `g` (1 in the empty lanes).
+#[inline(always)]
+fn near_kc(near: &[Option<NearPoint>; SEGMENT], g: usize) -> F4 {
+    F4(std::array::from_fn(|l| {
+        near[g * LANES + l].as_ref().map_or(1.0, |p| p.kc)
+    }))
+}
+
+/// The $\sqrt{1-n}$ of near group `g` (1 in the empty lanes).
+#[inline(always)]
+fn near_snc(near: &[Option<NearPoint>; SEGMENT], g: usize) -> F4 {
+    F4(std::array::from_fn(|l| {
+        near[g * LANES + l].as_ref().map_or(1.0, |p| p.snc)
+    }))
+}
+
+/// The lanes of near group `g` whose $\Pi$ track is iterated.
+#[inline(always)]
+fn near_want_pi(near: &[Option<NearPoint>; SEGMENT], g: usize) -> M4 {
+    M4::from_flags(std::array::from_fn(|l| {
+        near[g * LANES + l].as_ref().is_some_and(|p| p.use_pi_track)
+    }))
 }
 
 impl Potential for UniformDisk {

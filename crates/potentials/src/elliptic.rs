@@ -326,85 +326,104 @@ pub(crate) fn gauss(kc: f64, sqrt_one_minus_n: Option<f64>) -> Gauss {
     }
 }
 
-/// [`gauss`] for [`LANES`] moduli side by side: lane $l$ is bit for bit
-/// `gauss(kc[l], want_pi[l].then_some(sqrt_one_minus_n[l]))` (the same operations in the same
-/// order; a lane that has converged is frozen while the others iterate, and the $\Pi$ track
-/// of a lane that does not want it is computed and discarded). Same domain as [`gauss`] for
-/// the lanes whose results are used.
+/// [`gauss`] for `G` groups of [`LANES`] moduli side by side: lane $l$ of group $g$ is bit for
+/// bit `gauss(kc[g][l], want_pi[g][l].then_some(sqrt_one_minus_n[g][l]))` (the same operations
+/// in the same order; a lane that has converged is frozen while the others iterate, and the
+/// $\Pi$ track of a lane that does not want it is computed and discarded). Same domain as
+/// [`gauss`] for the lanes whose results are used. Each iteration is a chain of a division, a
+/// square root and multiplications that the next one waits for; the groups' chains are
+/// independent, so two groups interleave in the processor.
 #[inline(always)]
-pub(crate) fn gauss_lanes(kc: F4, sqrt_one_minus_n: F4, want_pi: M4) -> [Gauss; LANES] {
+pub(crate) fn gauss_lanes<const G: usize>(
+    kc: [F4; G],
+    sqrt_one_minus_n: [F4; G],
+    want_pi: [M4; G],
+) -> [[Gauss; LANES]; G] {
     let one = F4::splat(1.0);
     let zero = F4::splat(0.0);
-    let mut mu = one;
+    let mut mu = [one; G];
     let mut nu = kc;
-    let (mut b_alpha, mut b_beta) = (zero, one);
-    let (mut d_alpha, mut d_beta) = (one, zero);
-    let (mut c_alpha, mut c_beta) = (F4::splat(0.25), zero);
-    let (mut dc_alpha, mut dc_beta) = (kc * 0.25, F4::splat(0.5));
-    let snc = want_pi.select(sqrt_one_minus_n, one);
+    let (mut b_alpha, mut b_beta) = ([zero; G], [one; G]);
+    let (mut d_alpha, mut d_beta) = ([one; G], [zero; G]);
+    let (mut c_alpha, mut c_beta) = ([F4::splat(0.25); G], [zero; G]);
+    let mut dc_alpha: [F4; G] = std::array::from_fn(|g| kc[g] * 0.25);
+    let mut dc_beta = [F4::splat(0.5); G];
+    let snc: [F4; G] = std::array::from_fn(|g| want_pi[g].select(sqrt_one_minus_n[g], one));
     let (mut p_alpha, mut p_beta) = (snc, snc);
-    let mut w = snc * snc;
-    let mut active = M4::from_flags([true; LANES]);
+    let mut w: [F4; G] = std::array::from_fn(|g| snc[g] * snc[g]);
+    let mut active = [M4::from_flags([true; LANES]); G];
     let mut steps = 0;
     loop {
-        let q = mu * nu;
-        let mu2 = mu * mu;
-        let inv_mu = 1.0 / mu;
-        let h = 0.25 * (mu + nu) * inv_mu;
-        let half_inv_mu2 = 0.5 * inv_mu * inv_mu;
-        // Track::step_at_mu, lane by lane, kept where the lane is still iterating.
-        let step = |alpha: &mut F4, beta: &mut F4| {
-            let new_alpha = h * (*alpha + *beta * q);
-            let new_beta = half_inv_mu2 * (*alpha + *beta * mu2);
-            *alpha = active.select(new_alpha, *alpha);
-            *beta = active.select(new_beta, *beta);
-        };
-        step(&mut b_alpha, &mut b_beta);
-        step(&mut d_alpha, &mut d_beta);
-        if steps > 0 {
-            step(&mut c_alpha, &mut c_beta);
-            step(&mut dc_alpha, &mut dc_beta);
+        for g in 0..G {
+            let on = active[g];
+            let (mu_g, nu_g) = (mu[g], nu[g]);
+            let q = mu_g * nu_g;
+            let mu2 = mu_g * mu_g;
+            let inv_mu = 1.0 / mu_g;
+            let h = 0.25 * (mu_g + nu_g) * inv_mu;
+            let half_inv_mu2 = 0.5 * inv_mu * inv_mu;
+            // Track::step_at_mu, lane by lane, kept where the lane is still iterating.
+            let step = |alpha: &mut F4, beta: &mut F4| {
+                let new_alpha = h * (*alpha + *beta * q);
+                let new_beta = half_inv_mu2 * (*alpha + *beta * mu2);
+                *alpha = on.select(new_alpha, *alpha);
+                *beta = on.select(new_beta, *beta);
+            };
+            step(&mut b_alpha[g], &mut b_beta[g]);
+            step(&mut d_alpha[g], &mut d_beta[g]);
+            if steps > 0 {
+                step(&mut c_alpha[g], &mut c_beta[g]);
+                step(&mut dc_alpha[g], &mut dc_beta[g]);
+            }
+            let pi_active = on.and(want_pi[g]);
+            let w_g = w[g];
+            let quarter_inv_w = 0.25 / w_g;
+            let wq = w_g + q;
+            let alpha = wq * (p_alpha[g] + p_beta[g] * q) * quarter_inv_w;
+            let beta = 2.0 * (p_alpha[g] + p_beta[g] * w_g) * quarter_inv_w;
+            p_alpha[g] = pi_active.select(alpha, p_alpha[g]);
+            p_beta[g] = pi_active.select(beta, p_beta[g]);
+            w[g] = pi_active.select(wq * wq * quarter_inv_w, w_g);
+            mu[g] = on.select(0.5 * (mu_g + nu_g), mu_g);
+            nu[g] = on.select(q.sqrt(), nu_g);
         }
-        let pi_active = active.and(want_pi);
-        let quarter_inv_w = 0.25 / w;
-        let wq = w + q;
-        let alpha = wq * (p_alpha + p_beta * q) * quarter_inv_w;
-        let beta = 2.0 * (p_alpha + p_beta * w) * quarter_inv_w;
-        p_alpha = pi_active.select(alpha, p_alpha);
-        p_beta = pi_active.select(beta, p_beta);
-        w = pi_active.select(wq * wq * quarter_inv_w, w);
-        mu = active.select(0.5 * (mu + nu), mu);
-        nu = active.select(q.sqrt(), nu);
         steps += 1;
-        let converged = (mu - nu).abs().le(mu * AGM_TOLERANCE);
         if steps >= MAX_STEPS {
             break;
         }
-        active = active.and(converged.not());
-        if !active.any() {
+        let mut any = false;
+        for g in 0..G {
+            let converged = (mu[g] - nu[g]).abs().le(mu[g] * AGM_TOLERANCE);
+            active[g] = active[g].and(converged.not());
+            any |= active[g].any();
+        }
+        if !any {
             break;
         }
     }
-    let m = 0.5 * (mu + nu);
-    let scale_mu = std::f64::consts::PI / (2.0 * mu * m * (m + mu));
-    let m_mu = m * mu;
-    let sw = w.sqrt();
-    let pi_scaled = want_pi.select(
-        std::f64::consts::PI * (p_alpha + p_beta * (m * sw)) / (2.0 * sw * m * (m + sw)),
-        zero,
-    );
-    let k = FRAC_PI_2 / m;
-    let b = scale_mu * (b_alpha + b_beta * m_mu);
-    let d = scale_mu * (d_alpha + d_beta * m_mu);
-    let c = scale_mu * (c_alpha + c_beta * m_mu);
-    let d_minus_c = scale_mu * (dc_alpha + dc_beta * m_mu);
-    std::array::from_fn(|l| Gauss {
-        k: k.0[l],
-        b: b.0[l],
-        d: d.0[l],
-        c: c.0[l],
-        d_minus_c: d_minus_c.0[l],
-        pi_scaled: pi_scaled.0[l],
+    std::array::from_fn(|g| {
+        let (mu, w) = (mu[g], w[g]);
+        let m = 0.5 * (mu + nu[g]);
+        let scale_mu = std::f64::consts::PI / (2.0 * mu * m * (m + mu));
+        let m_mu = m * mu;
+        let sw = w.sqrt();
+        let pi_scaled = want_pi[g].select(
+            std::f64::consts::PI * (p_alpha[g] + p_beta[g] * (m * sw)) / (2.0 * sw * m * (m + sw)),
+            zero,
+        );
+        let k = FRAC_PI_2 / m;
+        let b = scale_mu * (b_alpha[g] + b_beta[g] * m_mu);
+        let d = scale_mu * (d_alpha[g] + d_beta[g] * m_mu);
+        let c = scale_mu * (c_alpha[g] + c_beta[g] * m_mu);
+        let d_minus_c = scale_mu * (dc_alpha[g] + dc_beta[g] * m_mu);
+        std::array::from_fn(|l| Gauss {
+            k: k.0[l],
+            b: b.0[l],
+            d: d.0[l],
+            c: c.0[l],
+            d_minus_c: d_minus_c.0[l],
+            pi_scaled: pi_scaled.0[l],
+        })
     })
 }
 
@@ -569,6 +588,80 @@ mod tests {
             }
         }
         println!("worst √(1−n)Π error: {worst:.1} ulp");
+    }
+
+    /// The bits of every integral of one [`Gauss`].
+    fn bits(g: &Gauss) -> [u64; 6] {
+        [g.k, g.b, g.d, g.c, g.d_minus_c, g.pi_scaled].map(f64::to_bits)
+    }
+
+    /// Two and three groups side by side give bit for bit the groups one at a time and the
+    /// scalar [`gauss`], with lanes and groups of different iteration counts together (1 step at
+    /// $k_c = 1$, 11 at $10^{-150}$), $\Pi$ wanted in some lanes only, and a group whose lanes
+    /// all converge while the other group still iterates.
+    #[test]
+    fn interleaved_groups_are_the_single_group_bit_for_bit() {
+        let lanes = |kc: [f64; LANES], snc: [f64; LANES], pi: [bool; LANES]| {
+            (F4(kc), F4(snc), M4::from_flags(pi))
+        };
+        let groups = [
+            lanes(
+                [1.0, 1e-150, 0.3, 2.5e-9],
+                [0.5, 1e-12, 3.0, 1e7],
+                [true, false, true, true],
+            ),
+            lanes(
+                [0.999, 1.0, 0.7, 1.2],
+                [1.0, 0.2, 0.01, 7.0],
+                [false, true, true, false],
+            ),
+            lanes(
+                [1e-150, 1e-150, 1e-150, 1e-150],
+                [1e-150, 0.9, 1.0, 2.0],
+                [true; LANES],
+            ),
+            lanes(
+                [5.0, 3e-40, 1e-3, 1.0],
+                [1e-3, 40.0, 1.0, 1.0],
+                [true, true, false, false],
+            ),
+        ];
+        let scalar = |(kc, snc, pi): (F4, F4, M4)| -> [[u64; 6]; LANES] {
+            std::array::from_fn(|l| bits(&gauss(kc.0[l], pi.flags()[l].then_some(snc.0[l]))))
+        };
+        let single = |(kc, snc, pi): (F4, F4, M4)| -> [[u64; 6]; LANES] {
+            let [one] = gauss_lanes([kc], [snc], [pi]);
+            one.map(|g| bits(&g))
+        };
+        for group in groups {
+            let bits = scalar(group);
+            let values = bits.map(|lane| lane.map(f64::from_bits));
+            assert!(values.iter().flatten().all(|v| v.is_finite()), "{values:?}");
+            assert_eq!(single(group), bits);
+        }
+        for (i, first) in groups.iter().enumerate() {
+            for (j, second) in groups.iter().enumerate() {
+                let pair = gauss_lanes(
+                    [first.0, second.0],
+                    [first.1, second.1],
+                    [first.2, second.2],
+                );
+                assert_eq!(pair[0].map(|g| bits(&g)), single(*first), "groups {i}, {j}");
+                assert_eq!(
+                    pair[1].map(|g| bits(&g)),
+                    single(*second),
+                    "groups {i}, {j}"
+                );
+            }
+        }
+        let three = gauss_lanes(
+            [groups[1].0, groups[2].0, groups[0].0],
+            [groups[1].1, groups[2].1, groups[0].1],
+            [groups[1].2, groups[2].2, groups[0].2],
+        );
+        for (result, group) in three.iter().zip([groups[1], groups[2], groups[0]]) {
+            assert_eq!(result.map(|g| bits(&g)), single(group));
+        }
     }
 
     #[test]
