@@ -390,8 +390,10 @@ fn rim_samples(set: &SingularSet) -> ([Vec3; RIM_SAMPLES], usize) {
         SingularSet::Circle(radius) => (Vec3::x() * radius, Vec3::y() * radius),
         SingularSet::Ball(_) => return (points, 0),
     };
-    for (k, point) in points.iter_mut().enumerate() {
-        let (sin, cos) = (TAU * k as Real / RIM_SAMPLES as Real).sin_cos();
+    static ANGLES: OnceLock<[(Real, Real); RIM_SAMPLES]> = OnceLock::new();
+    let angles = ANGLES
+        .get_or_init(|| std::array::from_fn(|k| (TAU * k as Real / RIM_SAMPLES as Real).sin_cos()));
+    for (point, &(sin, cos)) in points.iter_mut().zip(angles) {
         *point = u * cos + v * sin;
     }
     (points, RIM_SAMPLES)
