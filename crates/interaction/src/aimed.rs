@@ -521,6 +521,10 @@ pub(crate) fn singular_set(y: &Body) -> SingularSet {
     }
 }
 
+/// The relative Newton step of [`nearest_on_ellipsoid`] after which it stops (one step fewer
+/// than stopping at $10^{-15}$, which only took a last step of rounding size).
+const NEAREST_STEP: Real = 1e-9;
+
 /// The point of the axis-aligned ellipsoid (or ellipse, for a zero semi-axis: the filled
 /// region) with semi-axes `axes` nearest to `q` (`q` itself if inside).
 pub(crate) fn nearest_on_ellipsoid(axes: &Vec3, q: &Vec3) -> Vec3 {
@@ -534,10 +538,10 @@ pub(crate) fn nearest_on_ellipsoid(axes: &Vec3, q: &Vec3) -> Vec3 {
         let (mut value, mut slope) = (-1.0, 0.0);
         for i in 0..3 {
             if axes[i] > 0.0 {
-                let a2 = axes[i] * axes[i];
-                let r = axes[i] * q[i] / (a2 + t);
+                let inverse = 1.0 / (axes[i] * axes[i] + t);
+                let r = axes[i] * q[i] * inverse;
                 value += r * r;
-                slope -= 2.0 * r * r / (a2 + t);
+                slope -= 2.0 * r * r * inverse;
             }
         }
         (value, slope)
@@ -562,7 +566,9 @@ pub(crate) fn nearest_on_ellipsoid(axes: &Vec3, q: &Vec3) -> Vec3 {
             break;
         }
         let next = t - value / slope;
-        if next <= t || next.is_nan() || (next - t) <= 1e-15 * next {
+        // Newton from the left converges monotonically and quadratically: after a step of
+        // 1e-9 relative the remaining error is at rounding level.
+        if next <= t || next.is_nan() || (next - t) <= NEAREST_STEP * next {
             t = next.max(t);
             break;
         }
