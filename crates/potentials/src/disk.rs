@@ -78,10 +78,11 @@
 //! # Batches
 //!
 //! [`Potential::fields_into`] and [`Potential::potentials_into`] sort each sixteen points into
-//! near and far ones and take them four at a time: the Gauss iterations of the near ones and
-//! the exterior series of the far ones run side by side in lanes (one vector instruction per
-//! operation; two groups of four interleaved), each lane frozen once its own iteration or
-//! series has stopped, so that every result is bit for bit the point's own
+//! near and far ones and take them four at a time: the closed form of the near ones (its
+//! quantities before and after the Gauss iteration, and the iteration itself) and the exterior
+//! series of the far ones run side by side in lanes (one vector instruction per operation; two
+//! groups of four interleaved), each lane frozen once its own iteration or series has stopped
+//! and each branch taken as a selection, so that every result is bit for bit the point's own
 //! [`Potential::field`].
 //!
 //! # Accuracy
@@ -323,6 +324,139 @@ impl UniformDisk {
         }
     }
 
+    /// [`UniformDisk::near_point`] for [`LANES`] points side by side (`rho` their
+    /// $\sqrt{x^2+y^2}$): the same operations in the same order, lane by lane, the branches
+    /// taken as selections (the rim offset's double-double form where any lane lies within half
+    /// a radius of the rim; [`hypot`]'s library fallback lane by lane where needed).
+    #[inline(always)]
+    fn near_lanes(&self, p: &[Vec3; LANES], rho: F4) -> NearLanes {
+        let r = self.radius;
+        let x = F4(std::array::from_fn(|l| p[l].x));
+        let y = F4(std::array::from_fn(|l| p[l].y));
+        let z = F4(std::array::from_fn(|l| p[l].z));
+        let (xn, yn, zn) = (x / r, y / r, z / r);
+        let rho_n = rho / r;
+        // relative_rim_offset: ρ_n − 1 unless |ρ_n − 1| < 1/2 (or is not a number).
+        let coarse = rho_n - 1.0;
+        let far_from_rim = F4::splat(0.5).le(coarse.abs());
+        let delta = if far_from_rim.all() {
+            coarse
+        } else {
+            let (px, ex) = two_product_lanes(x, x);
+            let (py, ey) = two_product_lanes(y, y);
+            let (pr, er) = two_product(r, r);
+            let (s1, f1) = two_sum_lanes(px, py);
+            let (s2, f2) = two_sum_lanes(s1, F4::splat(-pr));
+            let excess = s2 + ((((f1 + f2) + ex) + ey) - er);
+            far_from_rim.select(coarse, excess / (rho + r) / r)
+        };
+        let az = zn.abs();
+        let z2 = az * az;
+        let s_plus = hypot_lanes(2.0 + delta, az);
+        let s_minus = hypot_lanes(delta, az);
+        // s_minus is a square root or a hypot: zero or positive or not a number.
+        let on_rim = s_minus.le(F4::splat(0.0));
+        let s_minus = on_rim.select(F4::splat(Real::EPSILON), s_minus);
+        let kc = s_minus / s_plus;
+        let signed_snc = -delta / (2.0 + delta);
+        let snc = signed_snc.abs();
+        let needs_pi = az
+            .gt(F4::splat(0.0))
+            .and(M4::from_flags(std::array::from_fn(|l| delta.0[l] != 0.0)));
+        let use_pi_track = needs_pi.and(snc.gt(1e-20 * kc));
+        NearLanes {
+            xn,
+            yn,
+            z,
+            rho_n,
+            delta,
+            az,
+            z2,
+            s_plus,
+            on_rim,
+            kc,
+            signed_snc,
+            snc,
+            needs_pi,
+            use_pi_track,
+        }
+    }
+
+    /// [`UniformDisk::near_finish`] for [`LANES`] points side by side: the same operations in
+    /// the same order, lane by lane; the lanes on the rim circle lane by lane.
+    #[inline(always)]
+    fn near_finish_lanes(&self, near: &NearLanes, g: &[Gauss; LANES]) -> [Field; LANES] {
+        let lane = |f: fn(&Gauss) -> Real| F4(std::array::from_fn(|l| f(&g[l])));
+        let (k, b, d, c, pi_scaled) = (
+            lane(|g| g.k),
+            lane(|g| g.b),
+            lane(|g| g.d),
+            lane(|g| g.c),
+            lane(|g| g.pi_scaled),
+        );
+        let zero = F4::splat(0.0);
+        let NearLanes {
+            xn,
+            yn,
+            z,
+            rho_n,
+            delta,
+            az,
+            z2,
+            s_plus,
+            on_rim,
+            kc,
+            signed_snc,
+            needs_pi,
+            use_pi_track,
+            ..
+        } = *near;
+        let p_scaled = needs_pi.select(use_pi_track.select(pi_scaled, FRAC_PI_2 / kc), zero);
+        let signed_p = needs_pi.select(
+            F4(std::array::from_fn(|l| {
+                p_scaled.0[l].copysign(signed_snc.0[l])
+            })),
+            zero,
+        );
+        let delta_zero = M4::from_flags(std::array::from_fn(|l| delta.0[l] == 0.0));
+        let step = delta
+            .lt(zero)
+            .select(F4::splat(1.0), delta_zero.select(F4::splat(0.5), zero));
+        let bracket =
+            (b * (2.0 + 2.0 * rho_n + z2) + d * (z2 - 2.0 * delta) + z2 * signed_p) / s_plus;
+        let v = 2.0 * bracket - 2.0 * PI * az * step;
+        let omega = 2.0 * PI * step - 2.0 * az / s_plus * (k + signed_p);
+        let radial_over_rho = -16.0 * c / (s_plus * s_plus * s_plus);
+        let side = z
+            .gt(zero)
+            .select(F4::splat(1.0), z.lt(zero).select(F4::splat(-1.0), zero));
+        let potential = -self.g_sigma_radius * v;
+        let ax = self.g_sigma * radial_over_rho * xn;
+        let ay = self.g_sigma * radial_over_rho * yn;
+        let az_field = -self.g_sigma * side * omega;
+        let rim = on_rim.flags();
+        std::array::from_fn(|l| {
+            if rim[l] {
+                // As near_finish: a_ρ = −∞ toward the axis, 0 along a zero offset, a_z = 0.
+                let inward = |c: Real| {
+                    if c == 0.0 {
+                        0.0
+                    } else {
+                        -Real::INFINITY.copysign(c)
+                    }
+                };
+                return Field {
+                    potential: potential.0[l],
+                    acceleration: Vec3::new(inward(xn.0[l]), inward(yn.0[l]), 0.0),
+                };
+            }
+            Field {
+                potential: potential.0[l],
+                acceleration: Vec3::new(ax.0[l], ay.0[l], az_field.0[l]),
+            }
+        })
+    }
+
     /// [`UniformDisk::far_field`] for up to `G` groups of [`LANES`] points (`Some((point,
     /// dist))`) side by side: the same terms in the same order, each lane's sums frozen once its
     /// own series has stopped; the entries of the `None` lanes are meaningless. The groups'
@@ -463,6 +597,25 @@ struct NearPoint {
     use_pi_track: bool,
 }
 
+/// [`NearPoint`] for [`LANES`] points side by side (see [`UniformDisk::near_lanes`]).
+#[derive(Clone, Copy)]
+struct NearLanes {
+    xn: F4,
+    yn: F4,
+    z: F4,
+    rho_n: F4,
+    delta: F4,
+    az: F4,
+    z2: F4,
+    s_plus: F4,
+    on_rim: M4,
+    kc: F4,
+    signed_snc: F4,
+    snc: F4,
+    needs_pi: M4,
+    use_pi_track: M4,
+}
+
 impl crate::lanes::Batched for UniformDisk {
     /// The fields at `points` into `out`, [`SEGMENT`] points at a time: the far points of a
     /// segment gathered into groups of [`LANES`] whose exterior series run side by side, two
@@ -477,20 +630,30 @@ impl crate::lanes::Batched for UniformDisk {
             // Indices and inputs of the far and near points, in order.
             let mut far = [[None; LANES]; SEGMENT / LANES];
             let mut far_index = [0; SEGMENT];
-            let mut near = [None; SEGMENT];
+            // Empty near lanes hold a point on the axis (its results are discarded).
+            let mut near = [Vec3::new(0.0, 0.0, self.radius); SEGMENT];
+            let mut near_rho = [0.0; SEGMENT];
             let mut near_index = [0; SEGMENT];
             let (mut far_count, mut near_count) = (0, 0);
-            for (i, r) in segment.iter().enumerate() {
-                let rho = hypot(r.x, r.y);
-                let dist = hypot(rho, r.z);
-                if dist >= FAR_FIELD_RADII * self.radius {
-                    far[far_count / LANES][far_count % LANES] = Some((*r, dist));
-                    far_index[far_count] = i;
-                    far_count += 1;
-                } else {
-                    near[near_count] = Some(self.near_point(r, rho));
-                    near_index[near_count] = i;
-                    near_count += 1;
+            let far_limit = FAR_FIELD_RADII * self.radius;
+            for (c, chunk) in segment.chunks(LANES).enumerate() {
+                // ρ and r of four points side by side (Potential::field's hypot, lane by lane).
+                let coordinate =
+                    |f: fn(&Vec3) -> Real| F4(std::array::from_fn(|l| chunk.get(l).map_or(1.0, f)));
+                let rho = hypot_lanes(coordinate(|r| r.x), coordinate(|r| r.y));
+                let dist = hypot_lanes(rho, coordinate(|r| r.z));
+                for (l, r) in chunk.iter().enumerate() {
+                    let i = c * LANES + l;
+                    if dist.0[l] >= far_limit {
+                        far[far_count / LANES][far_count % LANES] = Some((*r, dist.0[l]));
+                        far_index[far_count] = i;
+                        far_count += 1;
+                    } else {
+                        near[near_count] = *r;
+                        near_rho[near_count] = rho.0[l];
+                        near_index[near_count] = i;
+                        near_count += 1;
+                    }
                 }
             }
             let groups = far_count.div_ceil(LANES);
@@ -511,55 +674,40 @@ impl crate::lanes::Batched for UniformDisk {
             let groups = near_count.div_ceil(LANES);
             let mut g = 0;
             while g < groups {
-                let integrals: [[Gauss; LANES]; 2] = if g + 1 < groups {
-                    gauss_lanes(
-                        [near_kc(&near, g), near_kc(&near, g + 1)],
-                        [near_snc(&near, g), near_snc(&near, g + 1)],
-                        [near_want_pi(&near, g), near_want_pi(&near, g + 1)],
-                    )
-                } else {
-                    let [one] = gauss_lanes(
-                        [near_kc(&near, g)],
-                        [near_snc(&near, g)],
-                        [near_want_pi(&near, g)],
+                // Not a closure: one called twice is compiled out of line, without AVX.
+                macro_rules! group {
+                    ($g:expr) => {
+                        self.near_lanes(
+                            &std::array::from_fn(|l| near[$g * LANES + l]),
+                            F4(std::array::from_fn(|l| near_rho[$g * LANES + l])),
+                        )
+                    };
+                }
+                let fields: [[Field; LANES]; 2] = if g + 1 < groups {
+                    let (first, second) = (group!(g), group!(g + 1));
+                    let [i0, i1] = gauss_lanes(
+                        [first.kc, second.kc],
+                        [first.snc, second.snc],
+                        [first.use_pi_track, second.use_pi_track],
                     );
+                    [
+                        self.near_finish_lanes(&first, &i0),
+                        self.near_finish_lanes(&second, &i1),
+                    ]
+                } else {
+                    let first = group!(g);
+                    let [i0] = gauss_lanes([first.kc], [first.snc], [first.use_pi_track]);
+                    let one = self.near_finish_lanes(&first, &i0);
                     [one, one]
                 };
                 let end = near_count.min((g + 2) * LANES);
                 for (j, &i) in near_index.iter().enumerate().take(end).skip(g * LANES) {
-                    if let Some(point) = &near[j] {
-                        target[i] =
-                            pick(self.near_finish(point, &integrals[j / LANES - g][j % LANES]));
-                    }
+                    target[i] = pick(fields[j / LANES - g][j % LANES]);
                 }
                 g += 2;
             }
         }
     }
-}
-
-/// The complementary moduli of near group `g` (1 in the empty lanes).
-#[inline(always)]
-fn near_kc(near: &[Option<NearPoint>; SEGMENT], g: usize) -> F4 {
-    F4(std::array::from_fn(|l| {
-        near[g * LANES + l].as_ref().map_or(1.0, |p| p.kc)
-    }))
-}
-
-/// The $\sqrt{1-n}$ of near group `g` (1 in the empty lanes).
-#[inline(always)]
-fn near_snc(near: &[Option<NearPoint>; SEGMENT], g: usize) -> F4 {
-    F4(std::array::from_fn(|l| {
-        near[g * LANES + l].as_ref().map_or(1.0, |p| p.snc)
-    }))
-}
-
-/// The lanes of near group `g` whose $\Pi$ track is iterated.
-#[inline(always)]
-fn near_want_pi(near: &[Option<NearPoint>; SEGMENT], g: usize) -> M4 {
-    M4::from_flags(std::array::from_fn(|l| {
-        near[g * LANES + l].as_ref().is_some_and(|p| p.use_pi_track)
-    }))
 }
 
 impl Potential for UniformDisk {
@@ -597,7 +745,7 @@ impl Potential for UniformDisk {
         }
     }
 
-    /// Four points at a time, the elliptic integrals of the near ones iterated side by side
+    /// Four points at a time, the near ones' closed form and the far ones' series side by side
     /// (AVX where the CPU has it), each result bit for bit [`Potential::field`]'s.
     fn fields_into(&self, points: &[Vec3], out: &mut [Field]) {
         crate::lanes::fields_into(self, points, out);
@@ -712,6 +860,48 @@ fn two_product(a: Real, b: Real) -> (Real, Real) {
     (p, a.mul_add(b, -p))
 }
 
+/// [`two_product`] lane by lane.
+#[inline(always)]
+fn two_product_lanes(a: F4, b: F4) -> (F4, F4) {
+    let p = a * b;
+    (
+        p,
+        F4(std::array::from_fn(|l| a.0[l].mul_add(b.0[l], -p.0[l]))),
+    )
+}
+
+/// `two_sum` lane by lane (the same six operations).
+#[inline(always)]
+fn two_sum_lanes(a: F4, b: F4) -> (F4, F4) {
+    let sum = a + b;
+    let b_virtual = sum - a;
+    let a_virtual = sum - b_virtual;
+    (sum, (a - a_virtual) + (b - b_virtual))
+}
+
+/// [`hypot`] lane by lane: the square root of the sum of the squares, the library's `hypot`
+/// in the lanes where that sum is out of range.
+#[inline(always)]
+fn hypot_lanes(a: F4, b: F4) -> F4 {
+    const SMALLEST: Real = Real::MIN_POSITIVE * (1u64 << 52) as Real;
+    let sum = a * a + b * b;
+    let in_range = F4::splat(SMALLEST)
+        .le(sum)
+        .and(sum.le(F4::splat(Real::MAX)));
+    let root = sum.sqrt();
+    if in_range.all() {
+        return root;
+    }
+    let in_range = in_range.flags();
+    F4(std::array::from_fn(|l| {
+        if in_range[l] {
+            root.0[l]
+        } else {
+            a.0[l].hypot(b.0[l])
+        }
+    }))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -804,6 +994,35 @@ mod tests {
                     assert!(same(g, w.potential), "potentials_into at {r:?}");
                 }
             }
+        }
+    }
+
+    /// Lanes where a square sum of `hypot` leaves the normal range (heights of 1e-300 radii
+    /// over the rim circle, where √(δ² + z²) underflows; a point at 1e200 radii, where ρ² + z²
+    /// overflows) beside ordinary lanes: the batch is still the point-by-point field bit for bit
+    /// (the library's `hypot` in those lanes only).
+    #[test]
+    fn batched_field_takes_the_library_hypot_lane_by_lane() {
+        let disk = UniformDisk::new(1.0, 2.5).unwrap();
+        let mut points = Vec::new();
+        for k in 0..6 {
+            let h = [1e-300, 3e-170, 1e-250, -1e-300, 2e-160, 0.0][k];
+            points.push(Vec3::new(1.0, 0.0, h));
+            points.push(Vec3::new(0.3 + 0.1 * k as f64, -0.4, 0.05));
+            points.push(Vec3::new(0.0, -1.0, -h));
+        }
+        points.push(Vec3::new(1e200, 3e199, -2e199));
+        points.push(Vec3::new(0.9, 0.1, 0.02));
+        // On the rim at a height of 1e-300 the fallback is what tells the point from the rim.
+        let scalar = disk.field(&points[0]);
+        assert!(scalar.acceleration.x.is_finite(), "{scalar:?}");
+        let mut out = vec![scalar; points.len()];
+        disk.fields_into(&points, &mut out);
+        for (r, got) in points.iter().zip(&out) {
+            let want = disk.field(r);
+            let equal = same(got.potential, want.potential)
+                && (0..3).all(|i| same(got.acceleration[i], want.acceleration[i]));
+            assert!(equal, "at {r:?}: {got:?} vs {want:?}");
         }
     }
 
