@@ -342,8 +342,8 @@ impl UniformDisk {
         let delta = if far_from_rim.all() {
             coarse
         } else {
-            let (px, ex) = two_product_lanes(x, x);
-            let (py, ey) = two_product_lanes(y, y);
+            let (px, ex) = two_square_lanes(x);
+            let (py, ey) = two_square_lanes(y);
             let (pr, er) = two_product(r, r);
             let (s1, f1) = two_sum_lanes(px, py);
             let (s2, f2) = two_sum_lanes(s1, F4::splat(-pr));
@@ -860,13 +860,29 @@ fn two_product(a: Real, b: Real) -> (Real, Real) {
     (p, a.mul_add(b, -p))
 }
 
-/// [`two_product`] lane by lane.
+/// [`two_product`]`(a, a)` lane by lane: $a^2$ and its rounding error. The error is exact
+/// and unique, so Dekker's product (Veltkamp's split, no fused operation) gives the fused
+/// multiply–add's bits wherever neither overflows nor underflows ($2^{-480} \le |a| \le
+/// 2^{480}$ in every lane); elsewhere the multiply–add lane by lane.
 #[inline(always)]
-fn two_product_lanes(a: F4, b: F4) -> (F4, F4) {
-    let p = a * b;
+fn two_square_lanes(a: F4) -> (F4, F4) {
+    const SPLIT: Real = 134_217_729.0; // 2^27 + 1
+    const LOW: Real = 3.203_332_952_292_961_5e-145; // 2^-480
+    const HIGH: Real = 3.121_748_550_315_992_2e144; // 2^480
+    let p = a * a;
+    let size = a.abs();
+    if F4::splat(LOW).le(size).and(size.le(F4::splat(HIGH))).all() {
+        let t = SPLIT * a;
+        let hi = t - (t - a);
+        let lo = a - hi;
+        let e1 = p - hi * hi;
+        let e2 = e1 - lo * hi;
+        let e3 = e2 - hi * lo;
+        return (p, lo * lo - e3);
+    }
     (
         p,
-        F4(std::array::from_fn(|l| a.0[l].mul_add(b.0[l], -p.0[l]))),
+        F4(std::array::from_fn(|l| a.0[l].mul_add(a.0[l], -p.0[l]))),
     )
 }
 
@@ -1023,6 +1039,57 @@ mod tests {
             let equal = same(got.potential, want.potential)
                 && (0..3).all(|i| same(got.acceleration[i], want.acceleration[i]));
             assert!(equal, "at {r:?}: {got:?} vs {want:?}");
+        }
+    }
+
+    /// Dekker's square is the fused multiply–add's error bit for bit, inside its range and at
+    /// its ends, and the multiply–add itself is taken outside it.
+    #[test]
+    fn lane_square_error_is_the_fused_one() {
+        let mut state = 11u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut values = vec![
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            2f64.powi(-480),
+            2f64.powi(480),
+            -2f64.powi(480) * (1.0 - f64::EPSILON),
+            2f64.powi(-481),
+            1e-300,
+            1e300,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::INFINITY,
+            f64::NAN,
+        ];
+        for _ in 0..4000 {
+            let scale = 10f64.powf(-150.0 + 300.0 * next());
+            values.push((2.0 * next() - 1.0) * scale);
+            values.push(1.0 + (2.0 * next() - 1.0) * 1e-8);
+        }
+        for chunk in values.chunks(LANES) {
+            let a = F4(std::array::from_fn(|l| {
+                chunk.get(l).copied().unwrap_or(0.5)
+            }));
+            let (p, e) = two_square_lanes(a);
+            for l in 0..LANES {
+                let (want_p, want_e) = two_product(a.0[l], a.0[l]);
+                assert!(
+                    same(p.0[l], want_p) && same(e.0[l], want_e),
+                    "{:e}: {:e} {:e} vs {want_p:e} {want_e:e}",
+                    a.0[l],
+                    p.0[l],
+                    e.0[l]
+                );
+            }
         }
     }
 
