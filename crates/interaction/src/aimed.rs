@@ -192,6 +192,11 @@ pub(crate) struct GridKey {
 }
 
 impl GridKey {
+    /// Azimuths per polar ring.
+    pub(crate) fn azimuth(&self) -> u16 {
+        self.azimuth
+    }
+
     /// The grid's node count.
     pub(crate) fn size(&self) -> usize {
         usize::from(self.polar) * usize::from(self.azimuth)

@@ -57,6 +57,12 @@ impl Strategy for AimedLadder {
             p,
             start,
             |level| aimed::grid_key(level, aim).size(),
+            // The polar count is the level; the azimuths follow it in steps of two, and are
+            // exact where the integrand is symmetric about the pole's axis.
+            |from, to| {
+                aim.coaxial
+                    || aimed::grid_key(to, aim).azimuth() > aimed::grid_key(from, aim).azimuth()
+            },
             |level| {
                 let grid = grids.get(aimed::grid_key(level, aim))?;
                 let sums = match (p.far, request == Request::Force) {

@@ -43,6 +43,8 @@ impl Strategy for FixedLadder {
             p,
             start_transverse(options, p).max(far_lamina_start(x, y, p, options)),
             |level| table_size(x.shape(), &key(level)),
+            // Both counts of a fixed table grow with the level.
+            |_, _| true,
             |level| {
                 let table = x.table(key(level))?;
                 if p.node_check {
@@ -186,11 +188,19 @@ pub(crate) struct LadderSettings {
 /// A ladder of levels from `start` (a level named by its transverse count): `size(level)` is
 /// a level's cost in evaluations, `evaluate(level)` its values and cost. Levels grow until two
 /// successive ones agree to the tolerance (see the module docs for the estimate).
+/// `refines(from, to)` says whether level `to` has more nodes than `from` in every 1-D rule of
+/// its table: the next level is the first one from the ladder's step that does, because a
+/// rule whose count stays keeps its error out of the change between the two levels. (The
+/// aimed lamina rule scales each of its sides with the level and rounds up, so a side with few
+/// nodes kept its count over a step: started at 0.7 of the plan's first level, the random-pose
+/// set's disk-disk gap 1 #0 (seed 13) certified 2.3e-14 with a true error of 2.2e-12, its
+/// radial side at 7 nodes on both levels.)
 pub(crate) fn run_ladder(
     settings: &LadderSettings,
     p: &Placement,
     start: u16,
     size: impl Fn(u16) -> usize,
+    refines: impl Fn(u16, u16) -> bool,
     mut evaluate: impl FnMut(u16) -> Result<(Values, usize), InteractionError>,
 ) -> Result<Interaction, InteractionError> {
     let tolerance = settings.tolerance;
@@ -273,11 +283,14 @@ pub(crate) fn run_ladder(
                 }),
             };
         }
-        let regular = if settings.single_step {
+        let mut regular = if settings.single_step {
             (level + 1).max((growth * Real::from(level)).ceil() as u16)
         } else {
             next_transverse(level, growth)
         };
+        while regular < MAX_TRANSVERSE && !refines(level, regular) {
+            regular += 1;
+        }
         if level + (regular - level).div_ceil(2) > MAX_TRANSVERSE {
             // Not even half a step left: a smaller one (the top level clamped) changes so
             // little that the change would understate the error. Measured: two parallel
