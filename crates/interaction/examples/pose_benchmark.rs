@@ -12,12 +12,13 @@
 //!
 //! Environment: `POSE_BENCHMARK_VERBOSE` prints every case; `POSE_BENCHMARK_ONLY=TEXT` keeps the
 //! cases whose label contains TEXT; `POSE_BENCHMARK_KW4=N` times KW4 in N random attitudes
-//! (default 20); `POSE_BENCHMARK_PARAMETRISATION=aimed|azimuth-height` forces a rule.
+//! (default 20); `POSE_BENCHMARK_PARAMETRISATION=aimed|azimuth-height` forces a rule;
+//! `POSE_BENCHMARK_SURFACE=a|b` the surface integrated over.
 
 use surfgrav_interaction::work_precision::{
     independent_reference, interaction_error, measure, pose_set, SplitMix64,
 };
-use surfgrav_interaction::{Body, InteractionOptions, Parametrisation};
+use surfgrav_interaction::{Body, InteractionOptions, Parametrisation, SurfaceChoice};
 use surfgrav_potentials::{Ellipsoid, Pose, Spheroid, Vec3};
 
 const GAPS: [f64; 4] = [0.05, 0.2, 1.0, 5.0];
@@ -36,6 +37,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     match std::env::var("POSE_BENCHMARK_PARAMETRISATION").as_deref() {
         Ok("aimed") => options.parametrisation = Parametrisation::Aimed,
         Ok("azimuth-height") => options.parametrisation = Parametrisation::AzimuthHeight,
+        _ => {}
+    }
+    match std::env::var("POSE_BENCHMARK_SURFACE").as_deref() {
+        Ok("a") => options.surface = SurfaceChoice::A,
+        Ok("b") => options.surface = SurfaceChoice::B,
         _ => {}
     }
     let mut cases = pose_set(seed, &GAPS, per_pair);
