@@ -764,12 +764,12 @@ impl LaminaAim {
 
     /// Whether every 1-D rule of the table has more nodes at level `to` than at `from` (see
     /// [`run_ladder`]): the radial sides and, unless Y's field is symmetric about the disk's
-    /// axis (the angular rules are then exact), every angular side of the table and the rim's.
+    /// axis (the angular rules are then exact), every angular side of the table (the first is
+    /// [`LaminaAim::angle`]) and the rim's.
     pub(crate) fn refines(&self, from: u16, to: u16) -> bool {
         let more = |side: &ClusteredSide| self.count(side, to) > self.count(side, from);
         [self.inward, self.outward].iter().flatten().all(more)
-            && (self.coaxial
-                || (more(&self.angle) && more(&self.rim) && self.angles.iter().all(more)))
+            && (self.coaxial || (more(&self.rim) && self.angles.iter().all(more)))
     }
 
     /// The number of field evaluations at `level` (area nodes and rim nodes): at most this
