@@ -200,7 +200,58 @@ fn push_row(out: &mut LaminaNodes, s: Real, weight_s: Real, angles: &[(Real, Rea
     }
 }
 
+/// A row of [`Lamina::fill_turned_rows`]: the area nodes of radius $s_j$ (`radius`) with the
+/// radial weight $\omega^s_j$ (`weight`) at the angles $\delta_j + \varphi$ for $\varphi$ in
+/// `angles[a_j..b_j]` (`angles`), `turn` $= (\cos\delta_j, \sin\delta_j)$.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TurnedRow {
+    pub radius: Real,
+    pub weight: Real,
+    pub turn: (Real, Real),
+    pub angles: std::ops::Range<usize>,
+}
+
+/// As [`push_row`], with the row's angles turned by $\delta$ (`turn` $= (\cos\delta, \sin\delta)$).
+fn push_turned_row(
+    out: &mut LaminaNodes,
+    s: Real,
+    weight_s: Real,
+    (cos_d, sin_d): (Real, Real),
+    angles: &[(Real, Real, Real)],
+) {
+    let (a, b) = (s * cos_d, s * sin_d);
+    for &(cos, sin, weight_phi) in angles {
+        out.area_points
+            .push(Vec3::new(a * cos - b * sin, b * cos + a * sin, 0.0));
+        out.area_weights.push(weight_phi * weight_s * s);
+    }
+}
+
 impl Lamina {
+    /// As [`Lamina::fill_rows`], but each row's angles turned by its own angle
+    /// ([`TurnedRow`]; rows whose angles are clustered toward their own point share one list
+    /// of angles).
+    pub fn fill_turned_rows(
+        &self,
+        angles: &[(Real, Real, Real)],
+        rows: &[TurnedRow],
+        rim: &[(Real, Real, Real)],
+        out: &mut LaminaNodes,
+    ) {
+        out.area_points.clear();
+        out.area_weights.clear();
+        for row in rows {
+            push_turned_row(
+                out,
+                row.radius,
+                row.weight,
+                row.turn,
+                angles.get(row.angles.clone()).unwrap_or(&[]),
+            );
+        }
+        self.fill_rim(rim, out);
+    }
+
     /// As [`Lamina::fill_nodes`], but each radius with its own angles: `rows` as
     /// $(s_j, \omega^s_j, a_j..b_j)$, the area nodes of radius $s_j$ at the angles
     /// `angles[a_j..b_j]` (same form as in [`Lamina::fill_nodes`]); rows whose range is out of
@@ -375,6 +426,52 @@ impl LaminaNodes {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A row turned by $\delta$ has the nodes of the unturned row at the angles $\varphi + \delta$
+    /// (to rounding, 1e-15 of the radius) and the same weights.
+    #[test]
+    fn turned_rows_are_rows_at_shifted_angles() {
+        let lamina = Lamina::new(1.3).unwrap();
+        let base: Vec<(Real, Real, Real)> = (0..7)
+            .map(|k| {
+                let phi = 0.9 * Real::from(k) - 2.0;
+                (phi.cos(), phi.sin(), 0.1 + 0.01 * Real::from(k))
+            })
+            .collect();
+        let rim = [(1.0, 0.0, 0.5)];
+        let mut turned_nodes = LaminaNodes::default();
+        let mut shifted_nodes = LaminaNodes::default();
+        let mut turned_rows = vec![];
+        let mut shifted = vec![];
+        let mut shifted_rows = vec![];
+        for (j, delta) in [0.0, 0.7, -2.9, 3.1].into_iter().enumerate() {
+            let s = 0.2 + 0.3 * j as Real;
+            turned_rows.push(TurnedRow {
+                radius: s,
+                weight: 0.25,
+                turn: (Real::cos(delta), Real::sin(delta)),
+                angles: 0..base.len(),
+            });
+            let first = shifted.len();
+            for &(cos, sin, w) in &base {
+                let phi = sin.atan2(cos) + delta;
+                shifted.push((phi.cos(), phi.sin(), w));
+            }
+            shifted_rows.push((s, 0.25, first..shifted.len()));
+        }
+        lamina.fill_turned_rows(&base, &turned_rows, &rim, &mut turned_nodes);
+        lamina.fill_rows(&shifted, &shifted_rows, &rim, &mut shifted_nodes);
+        assert_eq!(turned_nodes.area_weights(), shifted_nodes.area_weights());
+        assert_eq!(turned_nodes.area_points().len(), 28);
+        for (a, b) in turned_nodes
+            .area_points()
+            .iter()
+            .zip(shifted_nodes.area_points())
+        {
+            assert!((a - b).norm() <= 1e-15 * 1.3, "{a} {b}");
+        }
+        assert_eq!(turned_nodes.rim_points(), shifted_nodes.rim_points());
+    }
 
     /// Rows that all take the same angles give the tensor table of [`Lamina::fill_nodes`],
     /// node for node and bit for bit; rows with their own angles give each radius its angles.

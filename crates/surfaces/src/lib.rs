@@ -73,7 +73,7 @@ pub mod surface;
 
 pub use ellipsoid::{EllipsoidAzimuthHeight, EllipsoidPolarAzimuth, EllipsoidSurface};
 pub use error::{NodeTableError, ShapeError};
-pub use lamina::{Lamina, LaminaNodes};
+pub use lamina::{Lamina, LaminaNodes, TurnedRow};
 pub use mesh::{TriangleMesh, TriangleRule};
 pub use nodes::SurfaceNodes;
 pub use rule::BorrowedRule;
