@@ -122,11 +122,11 @@ const RIM_MARGIN: Real = 3.0;
 /// cases with a singular circle, seeds 12 to 16; each rule alone at a fraction of its plan,
 /// the others at three times theirs): with this factor 1.1 on the angle and radial rules and
 /// 1.25 on the rim's, the fraction each needed for 1e-12 was 0.6 to 1.0 (median 0.7) for
-/// the angle, 0.2 to 0.9 (median 0.65) radial and 0.6 to 0.95 (median 0.7) for the rim
-/// ([`ROW_RIM_MARGIN`]; with the stretch model's factor 3 the rim needed 0.25 to 0.4).
-/// Evaluations of the 48 disk cases of `pose_benchmark` with factors 1.0 / 1.1 on the angle:
-/// seeds 12 to 16 46,236 / 43,104, 44,864 / 44,468, 45,254 / 45,384, 44,084 / 43,312,
-/// 45,158 / 43,264.
+/// the angle, 0.3 to 0.9 (median 0.7) radial ([`CUT_PLANNED`]) and 0.6 to 0.95 (median 0.7)
+/// for the rim ([`ROW_RIM_MARGIN`]; with the stretch model's factor 3 the rim needed 0.25 to
+/// 0.4). Evaluations of the 48 disk cases of `pose_benchmark` with factors 1.0 / 1.1 on the
+/// angle (six cut points): seeds 12 to 16 46,236 / 43,104, 44,864 / 44,468, 45,254 / 45,384,
+/// 44,084 / 43,312, 45,158 / 43,264.
 const ROW_MARGIN: Real = 1.1;
 
 /// [`ROW_MARGIN`]'s counterpart for the rim rule (see there): with 1.1 on the rim too, the 48
@@ -1014,8 +1014,14 @@ pub(crate) fn lamina_aim(
 /// Samples of a singular circle for the radial plan ([`circle_cut`]).
 const CUT_SAMPLES: usize = 64;
 
-/// Points of the cut a radial side is planned against.
-const CUT_PLANNED: usize = 6;
+/// Points of the cut a radial side is planned against (besides the nearest singular point's
+/// model): the least favourable ones for plain Gauss–Legendre on the side. Measured on the 48
+/// disk cases of `pose_benchmark`, seeds 12 to 16, evaluations with 1 / 2 / 3 / 6 points:
+/// 42,014 / 42,014 / 42,782 / 43,104, 46,046 / 43,824 / 44,110 / 44,460, 43,614 / 44,734 /
+/// 45,340 / 45,384, 45,252 / 44,452 / 44,140 / 44,140, 43,056 / 43,252 / 42,526 / 43,220;
+/// with 2 the radial sides needed 0.3 to 0.9 of their plans (`side_needs`; 0.2 to 0.9 with
+/// 6), and planning a disk side took 7.1 µs (8.6 µs with 6; `plan_timing`).
+const CUT_PLANNED: usize = 2;
 
 /// The singular circle of radius `c` (Y's x–y plane about Y's centroid) in X's frame as
 /// (in-plane radius ρ, height |z|) at [`CUT_SAMPLES`] equally spaced points and at its
