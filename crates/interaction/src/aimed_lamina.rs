@@ -110,28 +110,29 @@ const AREA_MARGIN: Real = 1.4;
 /// (median 0.57) in these cases; with this factor at most 0.9 of it.
 const STRETCH_MARGIN: Real = 1.1;
 
-/// The factor on the rim rule's predicted count: measured as [`AREA_MARGIN`], the rim
-/// integral needed two to four times the predicted count where the other body's rim runs
-/// near (disk-disk gap 0.05 #2: 6e-6 at the predicted 2 × 12 nodes, 7e-16 at 2 × 48); rim
-/// nodes cost one potential each, a small part of a level.
-const RIM_MARGIN: Real = 3.0;
+/// The factor on the rim rule's predicted count (the stretch model's, [`near_stretch`], and
+/// the exact rim row's of a singular circle, [`CircleRows`]). Measured with the `side_needs`
+/// tool below (seeds 12 to 16, 84 cases of the stretch model and 85 of a singular circle): the
+/// fraction of its plan the rim rule needed alone for 1e-12 was 0.4 to 0.95 (median 0.65) for
+/// the stretch model (0.3 to 0.8 with the factor 1.5, 0.2 to 0.4 with the earlier 3) and 0.6
+/// to 0.95 (median 0.7) for a circle. Evaluations of the 48 disk cases of `pose_benchmark`,
+/// seeds 12 to 16, with the stretch model's factor 3 / 2 / 1.5 / 1.25 (the circle's 1.25):
+/// 42,014 / 40,650 / 39,974 / 39,622, 43,824 / 42,402 / 41,684 / 41,328, 44,734 / 43,696 /
+/// 43,176 / 42,914, 44,452 / 42,990 / 42,268 / 41,756, 43,252 / 41,942 / 41,286 / 40,964; with
+/// 1.1 for a circle: 45,630 / 46,258 / 47,102 / 45,978 / 44,560 (with six cut points).
+const RIM_MARGIN: Real = 1.25;
 
-/// The factor on the predicted counts of the angular and rim rules planned from a singular
-/// circle's exact row singularities ([`CircleRows`]), and on its radial sides (planned
-/// against the circle's cut, [`circle_cut`]). Measured with the `side_needs` tool below (85
-/// cases with a singular circle, seeds 12 to 16; each rule alone at a fraction of its plan,
-/// the others at three times theirs): with this factor 1.1 on the angle and radial rules and
-/// 1.25 on the rim's, the fraction each needed for 1e-12 was 0.6 to 1.0 (median 0.7) for
-/// the angle, 0.3 to 0.9 (median 0.7) radial ([`CUT_PLANNED`]) and 0.6 to 0.95 (median 0.7)
-/// for the rim ([`ROW_RIM_MARGIN`]; with the stretch model's factor 3 the rim needed 0.25 to
-/// 0.4). Evaluations of the 48 disk cases of `pose_benchmark` with factors 1.0 / 1.1 on the
-/// angle (six cut points): seeds 12 to 16 46,236 / 43,104, 44,864 / 44,468, 45,254 / 45,384,
-/// 44,084 / 43,312, 45,158 / 43,264.
+/// The factor on the predicted counts of the angular rules planned from a singular circle's
+/// exact row singularities ([`CircleRows`]), and on its radial sides (planned against the
+/// circle's cut, [`circle_cut`]); the rim's is [`RIM_MARGIN`]. Measured with the `side_needs`
+/// tool below (85 cases with a singular circle, seeds 12 to 16; each rule alone at a fraction
+/// of its plan, the others at three times theirs): with this factor, the fraction each needed
+/// for 1e-12 was 0.6 to 1.0 (median 0.7) for the angle and 0.3 to 0.9 (median 0.7) radial
+/// ([`CUT_PLANNED`]). Evaluations of the 48 disk cases of `pose_benchmark` with factors 1.0 /
+/// 1.1 on the angle (six cut points, the rim's factor 1.25 and the stretch model's 3): seeds
+/// 12 to 16 46,236 / 43,104, 44,864 / 44,468, 45,254 / 45,384, 44,084 / 43,312, 45,158 /
+/// 43,264.
 const ROW_MARGIN: Real = 1.1;
-
-/// [`ROW_MARGIN`]'s counterpart for the rim rule (see there): with 1.1 on the rim too, the 48
-/// disk cases took 45,630 / 46,258 / 47,102 / 45,978 / 44,560 evaluations on seeds 12 to 16.
-const ROW_RIM_MARGIN: Real = 1.25;
 
 /// A side's sinh width is the widest of the candidates whose predicted count is within this
 /// factor of the fewest. The one-pole model's optimum is too narrow for the rule as used: each
@@ -975,7 +976,7 @@ pub(crate) fn lamina_aim(
                 Complex::new(0.0, near.width),
                 Complex::new(offset(other.azimuth(), near.azimuth()), other.width),
             ];
-            ClusteredSide::plan_many(PI, &all, tolerance, 1.0).with_margin(ROW_RIM_MARGIN)
+            ClusteredSide::plan_many(PI, &all, tolerance, 1.0).with_margin(RIM_MARGIN)
         } else if stretch.is_empty() {
             ClusteredSide::plan(PI, Complex::new(0.0, rim_eta), tolerance).with_margin(RIM_MARGIN)
         } else {
@@ -1846,7 +1847,7 @@ mod side_needs_experiment {
     /// the fraction of its planned count each 1-D rule (the angular table, the radial sides,
     /// the rim) needs alone for a true error of at most 1e-12 against the independent
     /// reference at 1e-13, the other rules at three times their plans: how well each rule is
-    /// planned (the margins [`ROW_MARGIN`], [`ROW_RIM_MARGIN`] were measured with it).
+    /// planned (the margins [`ROW_MARGIN`], [`RIM_MARGIN`] were measured with it).
     #[test]
     #[ignore]
     fn side_needs() {
