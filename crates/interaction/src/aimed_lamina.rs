@@ -1733,50 +1733,14 @@ mod tests {
     #[test]
     #[ignore]
     fn level_errors() {
-        use crate::InteractionEngine;
-        let seed = std::env::var("LEVEL_ERRORS_SEED")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(12);
-        let only = std::env::var("LEVEL_ERRORS_ONLY").unwrap_or_default();
         let (mut total, mut worst) = (0usize, (0usize, String::new()));
-        for case in pose_set(seed, &[0.05, 0.2, 1.0, 5.0], 4)
-            .iter()
-            .filter(|c| c.label.contains("disk") && c.label.contains(only.as_str()))
-        {
-            let chosen = InteractionEngine::default()
-                .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
-                .map(|r| r.integrated_over)
-                .unwrap_or(None);
-            let over_b =
-                chosen == Some(crate::Side::B) || !matches!(case.a.shape(), BodyShape::Disk(_));
-            let (a_is_x, x, px, y, py) = if over_b {
-                (false, &case.b, &case.pose_b, &case.a, &case.pose_a)
-            } else {
-                (true, &case.a, &case.pose_a, &case.b, &case.pose_b)
-            };
-            let BodyShape::Disk(lamina) = x.shape() else {
-                continue;
-            };
-            let (map, turned) = engine_map(px, py);
-            let Some(aim) = lamina_aim(lamina, y, &map, 1e-12) else {
-                continue;
-            };
-            let (reference, certified) =
-                independent_reference(&case.a, &case.pose_a, &case.b, &case.pose_b, 1e-13).unwrap();
-            let sign = if a_is_x { 1.0 } else { -1.0 };
+        measured_disks(|case| {
+            let (lamina, aim, y) = (case.lamina, &case.aim, case.y);
             let mut workspace = LaminaWorkspace::default();
             let mut error_at = |level: u16| {
-                let nodes = workspace.nodes(lamina, &aim, level).unwrap();
+                let nodes = workspace.nodes(lamina, aim, level).unwrap();
                 let len = nodes.area_points().len() + nodes.rim_points().len();
-                let r =
-                    lamina_sums(nodes, y.potential(), &map).integrals(x.density(), &Vec3::z(), 0);
-                let e = ((r.potential_energy - reference.potential_energy)
-                    / reference.potential_energy)
-                    .abs();
-                let f = (turned * r.force - sign * reference.force_on_a).norm()
-                    / reference.force_on_a.norm();
-                (e.max(f), len)
+                (case.error(nodes), len)
             };
             if std::env::var("LEVEL_ERRORS_ALL").is_ok() {
                 for level in (aim.start / 2).max(4)..=(2 * aim.start) {
@@ -1798,7 +1762,7 @@ mod tests {
                     for s in (1..=20).map(|k| Real::from(k) * 0.05 * lamina.radius()) {
                         println!(
                             "    circle row s {s:.3}: {:?} (centre {:.3})",
-                            CircleRows::new(c, &map).at(s),
+                            CircleRows::new(c, &case.map).at(s),
                             aim.angle_centre
                         );
                     }
@@ -1806,17 +1770,17 @@ mod tests {
                 // Which 1-D rule limits the first level: each doubled alone.
                 let twice = |side: ClusteredSide| side.with_margin(2.0);
                 let mut variants = vec![];
-                let mut a = aim;
+                let mut a = *aim;
                 a.angle = twice(a.angle);
                 for side in &mut a.angles {
                     *side = twice(*side);
                 }
                 variants.push(("angle", a));
-                let mut a = aim;
+                let mut a = *aim;
                 a.inward = a.inward.map(twice);
                 a.outward = a.outward.map(twice);
                 variants.push(("radial", a));
-                let mut a = aim;
+                let mut a = *aim;
                 a.rim = twice(a.rim);
                 variants.push(("rim", a));
                 println!("    angle {:?}", aim.angle);
@@ -1825,24 +1789,16 @@ mod tests {
                 for (name, a) in variants {
                     let mut w = LaminaWorkspace::default();
                     let nodes = w.nodes(lamina, &a, aim.start).unwrap();
-                    let r = lamina_sums(nodes, y.potential(), &map).integrals(
-                        x.density(),
-                        &Vec3::z(),
-                        0,
-                    );
-                    let e = ((r.potential_energy - reference.potential_energy)
-                        / reference.potential_energy)
-                        .abs();
-                    let f = (turned * r.force - sign * reference.force_on_a).norm()
-                        / reference.force_on_a.norm();
-                    println!("    {name} doubled: error {:.1e}", e.max(f));
+                    println!("    {name} doubled: error {:.1e}", case.error(nodes));
                 }
                 let set = singular_set(y);
                 for k in 0..RIM_SAMPLES {
                     let phi = k as Real * std::f64::consts::TAU / RIM_SAMPLES as Real;
                     let r = lamina.radius();
-                    let r_y = map.apply(&Vec3::new(r * phi.cos(), r * phi.sin(), 0.0));
-                    let p = map.back(&(set.nearest(&r_y) - map.offset));
+                    let r_y = case
+                        .map
+                        .apply(&Vec3::new(r * phi.cos(), r * phi.sin(), 0.0));
+                    let p = case.map.back(&(set.nearest(&r_y) - case.map.offset));
                     let eta = angular_width(r, p.xy().norm(), p.z.abs());
                     if eta < STRETCH * aim.angle_eta {
                         println!(
@@ -1857,12 +1813,12 @@ mod tests {
             let (level, len) = first.unwrap_or((0, usize::MAX));
             total += len;
             if len > worst.0 {
-                worst = (len, case.label.clone());
+                worst = (len, case.label.to_string());
             }
             println!(
                 "{:32} {} start {:3} ({:5} ev, err {:.1e})  1e-12 at level {:3}: {:6} ev   eta {:.3} s_q {:.3} h {:.3} rim {:.3?} stretch {}",
                 case.label,
-                if certified { " " } else { "?" },
+                if case.certified { " " } else { "?" },
                 aim.start,
                 start_len,
                 start_error,
@@ -1874,7 +1830,7 @@ mod tests {
                 aim.singular[1],
                 aim.stretch_points,
             );
-        }
+        });
         println!("total {total}, worst {} ({})", worst.0, worst.1);
     }
 }
@@ -1883,9 +1839,6 @@ mod tests {
 #[cfg(test)]
 mod side_needs_experiment {
     use super::*;
-    use crate::body::BodyShape;
-    use crate::kernel::lamina_sums;
-    use crate::work_precision::{independent_reference, pose_set};
 
     /// For every disk case of the random-pose set (`LEVEL_ERRORS_SEED`, default 12;
     /// `LEVEL_ERRORS_ONLY` filters the labels; the disk the default engine integrates over),
@@ -1896,48 +1849,11 @@ mod side_needs_experiment {
     #[test]
     #[ignore]
     fn side_needs() {
-        use crate::InteractionEngine;
-        let seed = std::env::var("LEVEL_ERRORS_SEED")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(12);
-        let only = std::env::var("LEVEL_ERRORS_ONLY").unwrap_or_default();
-        for case in pose_set(seed, &[0.05, 0.2, 1.0, 5.0], 4)
-            .iter()
-            .filter(|c| c.label.contains("disk") && c.label.contains(only.as_str()))
-        {
-            let chosen = InteractionEngine::default()
-                .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
-                .map(|r| r.integrated_over)
-                .unwrap_or(None);
-            let over_b =
-                chosen == Some(crate::Side::B) || !matches!(case.a.shape(), BodyShape::Disk(_));
-            let (a_is_x, x, px, y, py) = if over_b {
-                (false, &case.b, &case.pose_b, &case.a, &case.pose_a)
-            } else {
-                (true, &case.a, &case.pose_a, &case.b, &case.pose_b)
-            };
-            let BodyShape::Disk(lamina) = x.shape() else {
-                continue;
-            };
-            let (map, turned) = engine_map(px, py);
-            let Some(aim) = lamina_aim(lamina, y, &map, 1e-12) else {
-                continue;
-            };
-            let (reference, _) =
-                independent_reference(&case.a, &case.pose_a, &case.b, &case.pose_b, 1e-13).unwrap();
-            let sign = if a_is_x { 1.0 } else { -1.0 };
+        measured_disks(|case| {
+            let (lamina, aim) = (case.lamina, case.aim);
             let error_of = |a: &LaminaAim| {
                 let mut w = LaminaWorkspace::default();
-                let nodes = w.nodes(lamina, a, aim.start).unwrap();
-                let r =
-                    lamina_sums(nodes, y.potential(), &map).integrals(x.density(), &Vec3::z(), 0);
-                let e = ((r.potential_energy - reference.potential_energy)
-                    / reference.potential_energy)
-                    .abs();
-                let f = (turned * r.force - sign * reference.force_on_a).norm()
-                    / reference.force_on_a.norm();
-                e.max(f)
+                case.error(w.nodes(lamina, a, aim.start).unwrap())
             };
             let scaled = |f: [Real; 3]| {
                 let mut a = aim;
@@ -1972,7 +1888,7 @@ mod side_needs_experiment {
                 "{:32} exact {} start {:3} eta {:.3} stretch {} needs angle {:.2} (of {:5.1}) radial {:.2} (of {:5.1}) rim {:.2} (of {:5.1})",
                 case.label, aim.rows.is_some(), aim.start, aim.angle_eta, aim.stretch_points, needs[0], base[0], needs[1], base[1], needs[2], base[2]
             );
-        }
+        });
     }
 }
 
@@ -1996,6 +1912,99 @@ fn engine_map(
     )
     .unwrap();
     (map, rotation)
+}
+
+/// A disk case of the random-pose set as the measuring tools see it: the disk X the default
+/// engine integrates over, in the engine's frame, with its plan and the independent reference
+/// (the ladder at 1e-13 over the other body).
+#[cfg(test)]
+struct MeasuredDisk<'a> {
+    label: &'a str,
+    lamina: &'a Lamina,
+    x: &'a Body,
+    y: &'a Body,
+    map: FrameMap,
+    turned: nalgebra::UnitQuaternion<Real>,
+    aim: LaminaAim,
+    reference: Interaction,
+    certified: bool,
+    /// +1 where X is A (the reference's force is on A), −1 where it is B.
+    sign: Real,
+}
+
+#[cfg(test)]
+impl MeasuredDisk<'_> {
+    /// The relative error of the table `nodes` (force or energy, the larger) against the
+    /// reference.
+    fn error(&self, nodes: &LaminaNodes) -> Real {
+        let r = crate::kernel::lamina_sums(nodes, self.y.potential(), &self.map).integrals(
+            self.x.density(),
+            &Vec3::z(),
+            0,
+        );
+        let reference = &self.reference;
+        let e =
+            ((r.potential_energy - reference.potential_energy) / reference.potential_energy).abs();
+        let f = (self.turned * r.force - self.sign * reference.force_on_a).norm()
+            / reference.force_on_a.norm();
+        e.max(f)
+    }
+}
+
+/// Calls `visit` for every disk case of the random-pose set of `LEVEL_ERRORS_SEED` (default
+/// 12; four per pair of kinds, gaps 0.05 to 5) whose label contains `LEVEL_ERRORS_ONLY` and
+/// whose disk has an aimed plan.
+#[cfg(test)]
+fn measured_disks(mut visit: impl FnMut(&MeasuredDisk<'_>)) {
+    use crate::body::BodyShape;
+    let seed = std::env::var("LEVEL_ERRORS_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(12);
+    let only = std::env::var("LEVEL_ERRORS_ONLY").unwrap_or_default();
+    for case in crate::work_precision::pose_set(seed, &[0.05, 0.2, 1.0, 5.0], 4)
+        .iter()
+        .filter(|c| c.label.contains("disk") && c.label.contains(only.as_str()))
+    {
+        let chosen = crate::InteractionEngine::default()
+            .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
+            .map(|r| r.integrated_over)
+            .unwrap_or(None);
+        let over_b =
+            chosen == Some(crate::Side::B) || !matches!(case.a.shape(), BodyShape::Disk(_));
+        let (sign, x, px, y, py) = if over_b {
+            (-1.0, &case.b, &case.pose_b, &case.a, &case.pose_a)
+        } else {
+            (1.0, &case.a, &case.pose_a, &case.b, &case.pose_b)
+        };
+        let BodyShape::Disk(lamina) = x.shape() else {
+            continue;
+        };
+        let (map, turned) = engine_map(px, py);
+        let Some(aim) = lamina_aim(lamina, y, &map, 1e-12) else {
+            continue;
+        };
+        let (reference, certified) = crate::work_precision::independent_reference(
+            &case.a,
+            &case.pose_a,
+            &case.b,
+            &case.pose_b,
+            1e-13,
+        )
+        .unwrap();
+        visit(&MeasuredDisk {
+            label: &case.label,
+            lamina,
+            x,
+            y,
+            map,
+            turned,
+            aim,
+            reference,
+            certified,
+            sign,
+        });
+    }
 }
 
 /// The cost of planning: the mean time of [`lamina_aim`] and of one level's node table (at
