@@ -1482,10 +1482,7 @@ mod tests {
                 .iter()
                 .filter(|c| c.label.contains("disk"))
             {
-                for (x, px, y, py) in [
-                    (&case.a, &case.pose_a, &case.b, &case.pose_b),
-                    (&case.b, &case.pose_b, &case.a, &case.pose_a),
-                ] {
+                for (x, px, y, py) in both_sides(case) {
                     let BodyShape::Disk(lamina) = x.shape() else {
                         continue;
                     };
@@ -1624,10 +1621,7 @@ mod tests {
             .iter()
             .filter(|c| c.label.contains("disk"))
         {
-            for (x, px, y, py) in [
-                (&case.a, &case.pose_a, &case.b, &case.pose_b),
-                (&case.b, &case.pose_b, &case.a, &case.pose_a),
-            ] {
+            for (x, px, y, py) in both_sides(case) {
                 let (BodyShape::Disk(lamina), SingularSet::Circle(c)) =
                     (x.shape(), singular_set(y))
                 else {
@@ -1914,6 +1908,22 @@ fn engine_map(
     (map, rotation)
 }
 
+/// A case's two sides as (X, X's pose, Y, Y's pose): integrated over A, then over B.
+#[cfg(test)]
+fn both_sides(
+    case: &crate::work_precision::PoseCase,
+) -> [(
+    &Body,
+    &surfgrav_potentials::Pose,
+    &Body,
+    &surfgrav_potentials::Pose,
+); 2] {
+    [
+        (&case.a, &case.pose_a, &case.b, &case.pose_b),
+        (&case.b, &case.pose_b, &case.a, &case.pose_a),
+    ]
+}
+
 /// A disk case of the random-pose set as the measuring tools see it: the disk X the default
 /// engine integrates over, in the engine's frame, with its plan and the independent reference
 /// (the ladder at 1e-13 over the other body).
@@ -2028,10 +2038,7 @@ mod plan_timing {
             .iter()
             .filter(|c| c.label.contains("disk-disk"))
         {
-            for (x, px, y, py) in [
-                (&case.a, &case.pose_a, &case.b, &case.pose_b),
-                (&case.b, &case.pose_b, &case.a, &case.pose_a),
-            ] {
+            for (x, px, y, py) in both_sides(case) {
                 let BodyShape::Disk(lamina) = x.shape() else {
                     continue;
                 };
