@@ -350,9 +350,16 @@ fn pose_set_body(kind: PoseSetKind, size: Real, rng: &mut SplitMix64) -> Body {
     built.expect("a built-in body is valid")
 }
 
-/// The centre distance at which B, moved from A's centroid along `direction`, touches A (the
-/// exact contact test, bisected to $10^{-14}$ relative).
-fn touching_distance(a: &Body, pose_a: &Pose, b: &Body, pose_b: &Pose, direction: &Vec3) -> Real {
+/// The centre distance at which B, moved from A's centroid along `direction` with its attitude
+/// from `pose_b`, touches A (the exact contact test, bisected to $10^{-14}$ relative): B at
+/// `direction` times this plus a gap is that gap or less from A.
+pub fn touching_distance(
+    a: &Body,
+    pose_a: &Pose,
+    b: &Body,
+    pose_b: &Pose,
+    direction: &Vec3,
+) -> Real {
     use super::overlap::{contact, Contact};
     let at =
         |d: Real| Pose::from_position_rotation(pose_a.position() + direction * d, pose_b.rotation);

@@ -1,5 +1,6 @@
 //! Numerical stress tests of the interaction engine (issue 6): spheroids of aspect ratio
-//! c/a = 1e-4 … 1e4, gaps from 1e-6 to separations of 1e8, and random extreme shapes and poses.
+//! c/a = 1e-4 … 1e4, gaps from 1e-6 to separations of 1e8, and random extreme shapes and poses;
+//! disks beside disks and thin oblate spheroids down to 1e-4 of the smaller radius apart.
 //!
 //! Every case must give a finite result whose estimate meets the requested tolerance, or a
 //! typed error (`ToleranceNotMet` with a finite best result, `BudgetTooSmall`): never a NaN,
@@ -16,10 +17,11 @@ mod interaction_support;
 use interaction_support::*;
 use proptest::prelude::*;
 use std::time::Instant;
+use surfgrav_interaction::work_precision::touching_distance;
 use surfgrav_interaction::{
     Body, Interaction, InteractionEngine, InteractionError, InteractionOptions, SurfaceChoice,
 };
-use surfgrav_potentials::{Pose, Spheroid, Vec3};
+use surfgrav_potentials::{Pose, Spheroid, UniformDisk, Vec3};
 
 /// Requested relative tolerance of the stress cases.
 const TOLERANCE: f64 = 1e-10;
@@ -242,6 +244,59 @@ proptest! {
         let direction = Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
         let pose_a = Pose::new(Vec3::zeros(), Vec3::from(rot_a));
         let pose_b = Pose::new(direction * r, Vec3::from(rot_b));
+        let mut results = vec![];
+        for surface in [SurfaceChoice::A, SurfaceChoice::B] {
+            let mut engine = InteractionEngine::new(InteractionOptions {
+                relative_tolerance: TOLERANCE,
+                max_evaluations: BUDGET,
+                surface,
+                ..InteractionOptions::default()
+            }).unwrap();
+            match engine.interact(&a, &pose_a, &b, &pose_b) {
+                Ok(x) => {
+                    prop_assert!(finite(&x));
+                    prop_assert!(x.error_estimate <= TOLERANCE);
+                    results.push(x);
+                }
+                Err(InteractionError::ToleranceNotMet { best, .. }) => prop_assert!(finite(&best)),
+                Err(InteractionError::BudgetTooSmall { .. }) => {}
+                Err(e) => prop_assert!(false, "unexpected error {e}"),
+            }
+        }
+        if let [x, y] = results[..] {
+            let e = errors(&x, &y).max();
+            prop_assert!(e <= x.error_estimate + y.error_estimate + 1e-13, "over A and B differ by {e:e}");
+        }
+    }
+
+    /// A unit disk and a disk or a thin oblate spheroid (c/a = 1e-3 … 0.3; radius 0.3 … 1) in
+    /// random attitudes and directions, placed where they touch and moved apart by 1e-4 … 0.1
+    /// of the smaller radius: the aimed lamina rule's territory, where the other body's
+    /// singular circle (rim or focal circle) runs close. Over either surface: a finite result
+    /// whose estimate meets the tolerance, or a typed error; when both are certified they
+    /// agree within their estimates.
+    #[test]
+    fn disks_near_contact(
+        other_disk in any::<bool>(),
+        radius in 0.3..1.0f64,
+        flattening in log_uniform(1e-3, 0.3),
+        gap in log_uniform(1e-4, 0.1),
+        theta in 0.0..std::f64::consts::PI,
+        phi in 0.0..std::f64::consts::TAU,
+        rot_a in prop::array::uniform3(-2.0..2.0f64),
+        rot_b in prop::array::uniform3(-2.0..2.0f64),
+    ) {
+        let a = Body::disk(UniformDisk::new(1.0, 1.0).unwrap()).unwrap();
+        let b = if other_disk {
+            Body::disk(UniformDisk::new(radius, 1.0).unwrap()).unwrap()
+        } else {
+            Body::spheroid(Spheroid::new(radius, radius * flattening, 1.0).unwrap()).unwrap()
+        };
+        let direction = Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
+        let pose_a = Pose::new(Vec3::zeros(), Vec3::from(rot_a));
+        let mut pose_b = Pose::new(Vec3::zeros(), Vec3::from(rot_b));
+        let touch = touching_distance(&a, &pose_a, &b, &pose_b, &direction);
+        pose_b.translation.vector = direction * (touch + gap * radius);
         let mut results = vec![];
         for surface in [SurfaceChoice::A, SurfaceChoice::B] {
             let mut engine = InteractionEngine::new(InteractionOptions {
