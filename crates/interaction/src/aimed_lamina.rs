@@ -1775,7 +1775,9 @@ mod tests {
     /// (`LEVEL_ERRORS_SEED`, default 12; four per pair of kinds, gaps 0.05 to 5; the disk the
     /// default engine integrates over), the true error of each level of the rule against the
     /// independent reference at 1e-13, and the evaluations of the first level whose error is
-    /// at most 1e-12 (`LEVEL_ERRORS_ONLY` filters the labels).
+    /// at most 1e-12 (`LEVEL_ERRORS_ONLY` filters the labels; `LEVEL_ERRORS_ALL` prints every
+    /// level from half the plan's first to twice it, `LEVEL_ERRORS_PARTS` which 1-D rule limits
+    /// the first level, a singular circle's row singularities and the stretch's points).
     #[test]
     #[ignore]
     fn level_errors() {
