@@ -635,8 +635,23 @@ pub(crate) struct RowSingularity {
 }
 
 impl RowSingularity {
+    /// No singularity near the row (a degenerate quadratic).
+    const NONE: Self = Self {
+        cos: 1.0,
+        sin: 0.0,
+        width: NO_SINGULARITY,
+    };
+
     pub(crate) fn azimuth(&self) -> Real {
         self.sin.atan2(self.cos)
+    }
+
+    /// The angle between this singularity's azimuth and `centre`'s, in $[0, \pi]$ (the
+    /// offset on a half-range clustered toward `centre`).
+    fn offset_from(&self, centre: &Self) -> Real {
+        (centre.cos * self.sin - centre.sin * self.cos)
+            .atan2(centre.cos * self.cos + centre.sin * self.sin)
+            .abs()
     }
 }
 
@@ -649,7 +664,7 @@ fn principal_sqrt(z: Complex<Real>) -> Complex<Real> {
     Complex::new(re, im)
 }
 
-/// The width standing for no singularity near the row (a degenerate quadratic).
+/// The width standing for no singularity near the row ([`RowSingularity::NONE`]).
 const NO_SINGULARITY: Real = 10.0;
 
 impl CircleRows {
@@ -667,11 +682,7 @@ impl CircleRows {
 
     /// The row of radius `s`: its two singularities, the narrower first.
     pub(crate) fn at(&self, s: Real) -> [RowSingularity; 2] {
-        let none = RowSingularity {
-            cos: 1.0,
-            sin: 0.0,
-            width: NO_SINGULARITY,
-        };
+        let none = RowSingularity::NONE;
         // w = e^{iφ}: the phasor w/|w| and the width |ln|w||.
         let of_w = |w: Complex<Real>| {
             let squared = w.re * w.re + w.im * w.im;
@@ -864,11 +875,7 @@ pub(crate) fn lamina_aim(
         }
         out
     };
-    let mut sampled = [[RowSingularity {
-        cos: 1.0,
-        sin: 0.0,
-        width: NO_SINGULARITY,
-    }; 2]; ROW_SAMPLES + 1];
+    let mut sampled = [[RowSingularity::NONE; 2]; ROW_SAMPLES + 1];
     if let Some(rows) = &circle {
         for (m, o) in sampled.iter_mut().enumerate() {
             let s = if m < ROW_SAMPLES {
@@ -894,11 +901,7 @@ pub(crate) fn lamina_aim(
     if circle.is_some() {
         for (o, [near, other]) in others.iter_mut().zip(&sampled) {
             if other.width < NO_SINGULARITY {
-                // The angle between the two phasors.
-                let between = (near.cos * other.sin - near.sin * other.cos)
-                    .atan2(near.cos * other.cos + near.sin * other.sin)
-                    .abs();
-                let t = Complex::new(between, other.width);
+                let t = Complex::new(other.offset_from(near), other.width);
                 *o = (table_entry(near.width, eta), bernstein_rho(t / PI), t);
             }
         }
@@ -982,8 +985,10 @@ pub(crate) fn lamina_aim(
             Some(radial(s_q, 1.0, radius - s_q, singular)),
         )
     };
-    let rim_centre = match &circle {
-        Some(rows) => rows.at(radius)[0].azimuth(),
+    // A singular circle's rim row.
+    let rim_row = circle.map(|rows| rows.at(radius));
+    let rim_centre = match &rim_row {
+        Some([near, _]) => near.azimuth(),
         None => q_rim.y.atan2(q_rim.x),
     };
     let radial_margin = if circle.is_some() { ROW_MARGIN } else { margin };
@@ -1017,11 +1022,10 @@ pub(crate) fn lamina_aim(
                 angles[k] = planned;
             }
         }
-        let rim = if let Some(rows) = &circle {
-            let [near, other] = rows.at(radius);
+        let rim = if let Some([near, other]) = &rim_row {
             let all = [
                 Complex::new(0.0, near.width),
-                Complex::new(offset(other.azimuth(), near.azimuth()), other.width),
+                Complex::new(other.offset_from(near), other.width),
             ];
             ClusteredSide::plan_many(PI, &all, tolerance, EXACT_SEARCH).with_margin(RIM_MARGIN)
         } else if stretch.is_empty() {
