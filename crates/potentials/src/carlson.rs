@@ -46,7 +46,7 @@
 //! $10^{150}$. Elsewhere we agree with ellip to 8 ulp. One call
 //! replaces four of ellip's.
 
-use crate::lanes::F4;
+use crate::lanes::Lanes;
 
 /// $R_F(x, y, z)$ and $R_D$ with each argument in the last slot, from one duplication loop.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -294,7 +294,7 @@ fn series<const K: usize>(e2: f64, e3: f64, deviations: [f64; 3]) -> (f64, [f64;
     (rf, rd)
 }
 
-/// The three $R_D$ of [`symmetric_integrals_in_range`] for [`LANES`](crate::lanes::LANES) argument triples at once,
+/// The three $R_D$ of [`symmetric_integrals_in_range`] for `N` argument triples at once,
 /// lane $l$ at $(x_l, y_l, z_l)$, each bit for bit the scalar result.
 ///
 /// Every lane must satisfy [`shares_division`] (a caller substitutes a placeholder such as
@@ -304,14 +304,14 @@ fn series<const K: usize>(e2: f64, e3: f64, deviations: [f64; 3]) -> (f64, [f64;
 /// to the largest degree any lane needs, each lane's terms beyond its own degree skipped. $R_F$
 /// is not formed (the ellipsoid's field does not use it).
 #[inline(always)]
-pub(crate) fn rd_lanes(x: F4, y: F4, z: F4) -> [F4; 3] {
+pub(crate) fn rd_lanes<const N: usize>(x: Lanes<N>, y: Lanes<N>, z: Lanes<N>) -> [Lanes<N>; 3] {
     let (mut xn, mut yn, mut zn) = (x, y, z);
     let mu0 = (x + y + z) / 3.0;
     let (dx0, dy0) = (mu0 - x, mu0 - y);
     let spread = dx0.abs().max(dy0.abs()).max((mu0 - z).abs()) / SERIES_THRESHOLD;
     let mut mu = mu0;
-    let mut factor = F4::splat(1.0);
-    let mut sums = [F4::splat(0.0); 3];
+    let mut factor = Lanes::<N>::splat(1.0);
+    let mut sums = [Lanes::<N>::splat(0.0); 3];
     for _ in 0..MAX_STEPS {
         // The scalar loop's exit test, negated (a NaN keeps a lane going, as there).
         let active = (spread * factor).le(mu).not();
@@ -340,20 +340,23 @@ pub(crate) fn rd_lanes(x: F4, y: F4, z: F4) -> [F4; 3] {
     let e2 = zx * zy - zz * zz;
     let e3 = zx * zy * zz;
     let deviation = zx.abs().max(zy.abs()).max(zz.abs());
-    let low = deviation.le(F4::splat(1e-3));
-    let middle = deviation.le(F4::splat(0.01));
+    let low = deviation.le(Lanes::<N>::splat(1e-3));
+    let middle = deviation.le(Lanes::<N>::splat(0.01));
     let degree = low.select(
-        F4::splat(6.0),
-        middle.select(F4::splat(8.0), F4::splat(SERIES_TERMS as f64)),
+        Lanes::<N>::splat(6.0),
+        middle.select(
+            Lanes::<N>::splat(8.0),
+            Lanes::<N>::splat(SERIES_TERMS as f64),
+        ),
     );
     // Three fixed-degree instantiations (fully unrolled): the lowest that covers every lane.
     let deviations = [zx, zy, zz];
     let rd_series = if !middle.all() {
-        series_lanes::<SERIES_TERMS>(e2, e3, deviations, degree)
+        series_lanes::<SERIES_TERMS, N>(e2, e3, deviations, degree)
     } else if !low.all() {
-        series_lanes::<8>(e2, e3, deviations, degree)
+        series_lanes::<8, N>(e2, e3, deviations, degree)
     } else {
-        series_lanes::<6>(e2, e3, deviations, degree)
+        series_lanes::<6, N>(e2, e3, deviations, degree)
     };
     let inv_sqrt_mu = 1.0 / mu.sqrt();
     let tail = factor * inv_sqrt_mu / mu;
@@ -367,17 +370,26 @@ pub(crate) fn rd_lanes(x: F4, y: F4, z: F4) -> [F4; 3] {
 /// The $R_D$ series of [`series`] through degree $K - 1$ for the lanes, each lane's terms
 /// from its own `degree` on skipped (its sums then stop where the scalar loop stops).
 #[inline(always)]
-fn series_lanes<const K: usize>(e2: F4, e3: F4, deviations: [F4; 3], degree: F4) -> [F4; 3] {
-    let mut p = [F4::splat(0.0); K];
-    p[0] = F4::splat(1.0);
+fn series_lanes<const K: usize, const N: usize>(
+    e2: Lanes<N>,
+    e3: Lanes<N>,
+    deviations: [Lanes<N>; 3],
+    degree: Lanes<N>,
+) -> [Lanes<N>; 3] {
+    let mut p = [Lanes::<N>::splat(0.0); K];
+    p[0] = Lanes::<N>::splat(1.0);
     for n in 1..K - 1 {
-        let older = if n >= 2 { p[n - 2] } else { F4::splat(0.0) };
+        let older = if n >= 2 {
+            p[n - 2]
+        } else {
+            Lanes::<N>::splat(0.0)
+        };
         p[n + 1] = RECURRENCE[n].0 * e2 * p[n - 1] + RECURRENCE[n].1 * e3 * older;
     }
-    let mut c = [F4::splat(0.0); 3];
-    let mut rd = [F4::splat(0.0); 3];
+    let mut c = [Lanes::<N>::splat(0.0); 3];
+    let mut rd = [Lanes::<N>::splat(0.0); 3];
     for (n, &p_n) in p.iter().enumerate() {
-        let live = F4::splat(n as f64).lt(degree);
+        let live = Lanes::<N>::splat(n as f64).lt(degree);
         for i in 0..3 {
             let next_c = deviations[i] * c[i] + p_n;
             rd[i] = live.select(rd[i] + next_c * RD_WEIGHTS[n], rd[i]);
@@ -596,8 +608,9 @@ mod tests {
         triples.extend([[1.0; 3], [2.5; 3], [1.0, 1.0, 1.0 + 1e-15]]);
         triples.extend([[1e-10, 1e10, 1.0], [4.0, 1e-30, 1e-30]]);
         let mut degrees = [0usize; 3];
-        for chunk in triples.chunks_exact(crate::lanes::LANES) {
-            let lane = |i: usize| F4(std::array::from_fn(|l| chunk[l][i]));
+        // The width the ellipsoid's field uses.
+        for chunk in triples.chunks_exact(crate::lanes::WIDE) {
+            let lane = |i: usize| crate::lanes::F8::new(std::array::from_fn(|l| chunk[l][i]));
             let rd = rd_lanes(lane(0), lane(1), lane(2));
             for (l, &[x, y, z]) in chunk.iter().enumerate() {
                 let reference = symmetric_integrals_in_range(x, y, z).rd;

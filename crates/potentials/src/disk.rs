@@ -331,9 +331,9 @@ impl UniformDisk {
     #[inline(always)]
     fn near_lanes(&self, p: &[Vec3; LANES], rho: F4) -> NearLanes {
         let r = self.radius;
-        let x = F4(std::array::from_fn(|l| p[l].x));
-        let y = F4(std::array::from_fn(|l| p[l].y));
-        let z = F4(std::array::from_fn(|l| p[l].z));
+        let x = F4::new(std::array::from_fn(|l| p[l].x));
+        let y = F4::new(std::array::from_fn(|l| p[l].y));
+        let z = F4::new(std::array::from_fn(|l| p[l].z));
         let (xn, yn, zn) = (x / r, y / r, z / r);
         let rho_n = rho / r;
         // relative_rim_offset: ρ_n − 1 unless |ρ_n − 1| < 1/2 (or is not a number).
@@ -386,7 +386,7 @@ impl UniformDisk {
     /// the same order, lane by lane; the lanes on the rim circle lane by lane.
     #[inline(always)]
     fn near_finish_lanes(&self, near: &NearLanes, g: &[Gauss; LANES]) -> [Field; LANES] {
-        let lane = |f: fn(&Gauss) -> Real| F4(std::array::from_fn(|l| f(&g[l])));
+        let lane = |f: fn(&Gauss) -> Real| F4::new(std::array::from_fn(|l| f(&g[l])));
         let (k, b, d, c, pi_scaled) = (
             lane(|g| g.k),
             lane(|g| g.b),
@@ -413,7 +413,7 @@ impl UniformDisk {
         } = *near;
         let p_scaled = needs_pi.select(use_pi_track.select(pi_scaled, FRAC_PI_2 / kc), zero);
         let signed_p = needs_pi.select(
-            F4(std::array::from_fn(|l| {
+            F4::new(std::array::from_fn(|l| {
                 p_scaled.0[l].copysign(signed_snc.0[l])
             })),
             zero,
@@ -469,10 +469,11 @@ impl UniformDisk {
     ) -> [[Field; LANES]; G] {
         let tables = series_tables();
         let zero = F4::splat(0.0);
-        let dist: [F4; G] =
-            std::array::from_fn(|g| F4(std::array::from_fn(|l| points[g][l].map_or(1.0, |p| p.1))));
+        let dist: [F4; G] = std::array::from_fn(|g| {
+            F4::new(std::array::from_fn(|l| points[g][l].map_or(1.0, |p| p.1)))
+        });
         let u: [F4; G] = std::array::from_fn(|g| {
-            F4(std::array::from_fn(|l| points[g][l].map_or(0.0, |p| p.0.z))) / dist[g]
+            F4::new(std::array::from_fn(|l| points[g][l].map_or(0.0, |p| p.0.z))) / dist[g]
         });
         let t: [F4; G] = std::array::from_fn(|g| {
             let ratio = self.radius / dist[g];
@@ -638,8 +639,9 @@ impl crate::lanes::Batched for UniformDisk {
             let far_limit = FAR_FIELD_RADII * self.radius;
             for (c, chunk) in segment.chunks(LANES).enumerate() {
                 // ρ and r of four points side by side (Potential::field's hypot, lane by lane).
-                let coordinate =
-                    |f: fn(&Vec3) -> Real| F4(std::array::from_fn(|l| chunk.get(l).map_or(1.0, f)));
+                let coordinate = |f: fn(&Vec3) -> Real| {
+                    F4::new(std::array::from_fn(|l| chunk.get(l).map_or(1.0, f)))
+                };
                 let rho = hypot_lanes(coordinate(|r| r.x), coordinate(|r| r.y));
                 let dist = hypot_lanes(rho, coordinate(|r| r.z));
                 for (l, r) in chunk.iter().enumerate() {
@@ -679,7 +681,7 @@ impl crate::lanes::Batched for UniformDisk {
                     ($g:expr) => {
                         self.near_lanes(
                             &std::array::from_fn(|l| near[$g * LANES + l]),
-                            F4(std::array::from_fn(|l| near_rho[$g * LANES + l])),
+                            F4::new(std::array::from_fn(|l| near_rho[$g * LANES + l])),
                         )
                     };
                 }
@@ -882,7 +884,7 @@ fn two_square_lanes(a: F4) -> (F4, F4) {
     }
     (
         p,
-        F4(std::array::from_fn(|l| a.0[l].mul_add(a.0[l], -p.0[l]))),
+        F4::new(std::array::from_fn(|l| a.0[l].mul_add(a.0[l], -p.0[l]))),
     )
 }
 
@@ -909,7 +911,7 @@ fn hypot_lanes(a: F4, b: F4) -> F4 {
         return root;
     }
     let in_range = in_range.flags();
-    F4(std::array::from_fn(|l| {
+    F4::new(std::array::from_fn(|l| {
         if in_range[l] {
             root.0[l]
         } else {
@@ -1076,7 +1078,7 @@ mod tests {
             values.push(1.0 + (2.0 * next() - 1.0) * 1e-8);
         }
         for chunk in values.chunks(LANES) {
-            let a = F4(std::array::from_fn(|l| {
+            let a = F4::new(std::array::from_fn(|l| {
                 chunk.get(l).copied().unwrap_or(0.5)
             }));
             let (p, e) = two_square_lanes(a);

@@ -56,10 +56,11 @@
 //!   Newton step and of $w_i$ from one shared division, and Halley's iteration with a stop at
 //!   $10^{-6}$ (fewer steps, 256 batch points: 2/3/4 steps 129/107/20 → 227/29/0, yet slower
 //!   near the body and far from it).
-//! - Batches ([`Potential::fields_into`], [`Potential::potentials_into`]) are evaluated four
-//!   points at a time, in lanes: each scalar operation is written once for the four lanes so
-//!   that the compiler issues it as one vector instruction, which hides the latency of the
-//!   divisions and square roots. Newton's iteration and the duplication run until every lane
+//! - Batches ([`Potential::fields_into`], [`Potential::potentials_into`]) are evaluated eight
+//!   points at a time, in lanes: each scalar operation is written once for the eight lanes so
+//!   that the compiler issues it as two vector instructions on independent registers, which
+//!   hides the latency of the divisions and square roots (four lanes, one register, took 22 %
+//!   longer per interaction on the pose set's ellipsoid pairs: [`crate::lanes`]). Newton's iteration and the duplication run until every lane
 //!   has converged, a converged lane's values kept by selection; each lane sums the series to
 //!   its own degree. Every lane performs the scalar operations in the scalar order and nothing
 //!   is fused, so each result is bit for bit [`Potential::field`]'s (a unit test compares the
@@ -78,7 +79,7 @@ use std::f64::consts::PI;
 
 use crate::carlson::{rd_lanes, shares_division, symmetric_integrals_in_range};
 use crate::error::{positive, representable, BodyError};
-use crate::lanes::{F4, LANES, M4};
+use crate::lanes::{F8, M8, WIDE};
 use crate::point_mass::kepler_field;
 use crate::{Field, Potential, Real, Region, Vec3};
 
@@ -278,7 +279,7 @@ impl Ellipsoid {
         self.field(r)
     }
 
-    /// The fields at [`LANES`] points, each bit for bit [`Potential::field`]'s where the lane
+    /// The fields at [`WIDE`] points, each bit for bit [`Potential::field`]'s where the lane
     /// took the lane path, and which lanes did (the others' entries are meaningless).
     ///
     /// A lane outside the body, within the far-field limit and whose $A_i$ suit the shared
@@ -288,9 +289,9 @@ impl Ellipsoid {
     /// not a number, extreme $A_i$) carries a placeholder, and the caller evaluates that point
     /// with [`Potential::field`].
     #[inline(always)]
-    fn field_lanes(&self, points: [Vec3; LANES]) -> ([Field; LANES], [bool; LANES]) {
+    fn field_lanes(&self, points: [Vec3; WIDE]) -> ([Field; WIDE], [bool; WIDE]) {
         let s = &self.scaled;
-        let coordinate = |i: usize| F4(points.map(|r| r[i])) * s.inv_scale;
+        let coordinate = |i: usize| F8::new(points.map(|r| r[i])) * s.inv_scale;
         let p = [coordinate(0), coordinate(1), coordinate(2)];
         let mut x2 = [p[0] * p[0], p[1] * p[1], p[2] * p[2]];
         let mut r2 = x2[0] + x2[1] + x2[2];
@@ -299,11 +300,11 @@ impl Ellipsoid {
             + p[1] * p[1] * s.inv_axes2[1]
             + p[2] * p[2] * s.inv_axes2[2]
             - 1.0;
-        let refine = F4::splat(-1e-9)
+        let refine = F8::splat(-1e-9)
             .le(estimate)
-            .and(estimate.le(F4::splat(2.0)));
+            .and(estimate.le(F8::splat(2.0)));
         let mut excess = estimate;
-        let mut ratio2 = [F4::splat(0.0); 3];
+        let mut ratio2 = [F8::splat(0.0); 3];
         if refine.any() {
             let (refined, ratios) = surface_excess_lanes(&p, &s.axes, &s.inv_axes);
             excess = refine.select(refined, excess);
@@ -313,16 +314,16 @@ impl Ellipsoid {
         }
         // Outside and within the far-field limit (`beyond_far_field` is false).
         let mut live = r2
-            .le(F4::splat(FAR_FIELD_R2))
-            .and(excess.gt(F4::splat(0.0)));
+            .le(F8::splat(FAR_FIELD_R2))
+            .and(excess.gt(F8::splat(0.0)));
         if !live.all() {
             // A placeholder outside the body (on the x axis, two semi-axes out).
-            let placeholder = F4::splat(4.0 * s.axes2[0]);
+            let placeholder = F8::splat(4.0 * s.axes2[0]);
             x2[0] = live.select(x2[0], placeholder);
-            x2[1] = live.select(x2[1], F4::splat(0.0));
-            x2[2] = live.select(x2[2], F4::splat(0.0));
+            x2[1] = live.select(x2[1], F8::splat(0.0));
+            x2[2] = live.select(x2[2], F8::splat(0.0));
             r2 = live.select(r2, placeholder);
-            excess = live.select(excess, F4::splat(3.0));
+            excess = live.select(excess, F8::splat(3.0));
         }
         let lambda = s.confocal_parameter_lanes(&x2, &ratio2, excess, r2, live);
         let mut big_a = [
@@ -330,12 +331,12 @@ impl Ellipsoid {
             s.axes2[1] + lambda,
             s.axes2[2] + lambda,
         ];
-        live = live.and(M4::from_flags(std::array::from_fn(|l| {
+        live = live.and(M8::from_flags(std::array::from_fn(|l| {
             shares_division(big_a[0].0[l], big_a[1].0[l], big_a[2].0[l])
         })));
         if !live.all() {
             for a in &mut big_a {
-                *a = live.select(*a, F4::splat(1.0));
+                *a = live.select(*a, F8::splat(1.0));
             }
         }
         let rd = rd_lanes(big_a[0], big_a[1], big_a[2]);
@@ -363,22 +364,22 @@ impl Ellipsoid {
 }
 
 impl ScaledEllipsoid {
-    /// [`ScaledEllipsoid::confocal_parameter`] for [`LANES`] points side by side, each lane's
+    /// [`ScaledEllipsoid::confocal_parameter`] for [`WIDE`] points side by side, each lane's
     /// result bit for bit the scalar one: the same operations in the same order, a lane frozen
     /// once its step is below the tolerance (or from the start where `live` is false, its
     /// result then meaningless), the loop ending when all are.
     #[inline(always)]
     fn confocal_parameter_lanes(
         &self,
-        x2: &[F4; 3],
-        ratio2: &[F4; 3],
-        excess: F4,
-        r2: F4,
-        live: M4,
-    ) -> F4 {
-        let near = excess.lt(F4::splat(1.0));
+        x2: &[F8; 3],
+        ratio2: &[F8; 3],
+        excess: F8,
+        r2: F8,
+        live: M8,
+    ) -> F8 {
+        let near = excess.lt(F8::splat(1.0));
         let weighted = x2[0] * self.axes2[0] + x2[1] * self.axes2[1] + x2[2] * self.axes2[2];
-        let mut lambda = (r2 - weighted / r2).max(F4::splat(0.0));
+        let mut lambda = (r2 - weighted / r2).max(F8::splat(0.0));
         let mut done = live.not();
         for _ in 0..MAX_NEWTON_STEPS {
             if done.all() {
@@ -402,7 +403,7 @@ impl ScaledEllipsoid {
             lambda = done.select(lambda, next);
             done = done.or(converged);
         }
-        lambda.max(F4::splat(0.0))
+        lambda.max(F8::splat(0.0))
     }
 }
 
@@ -428,9 +429,9 @@ impl crate::lanes::Batched for Ellipsoid {
     }
 }
 
-impl crate::lanes::LaneField for Ellipsoid {
+impl crate::lanes::LaneField<WIDE> for Ellipsoid {
     #[inline(always)]
-    fn field_lanes(&self, points: [Vec3; LANES]) -> ([Field; LANES], [bool; LANES]) {
+    fn field_lanes(&self, points: [Vec3; WIDE]) -> ([Field; WIDE], [bool; WIDE]) {
         Ellipsoid::field_lanes(self, points)
     }
 
@@ -587,12 +588,12 @@ fn surface_excess(x: &[Real; 3], axes: &[Real; 3], inv_axes: &[Real; 3]) -> (Rea
     (excess + (((e01 + e012) + e_one) + lo), hi)
 }
 
-/// [`surface_excess`] for [`LANES`] points, each lane bit for bit the scalar result (the same
+/// [`surface_excess`] for [`WIDE`] points, each lane bit for bit the scalar result (the same
 /// operations in the same order, [`exact::lanes`]).
 #[inline(always)]
-fn surface_excess_lanes(x: &[F4; 3], axes: &[Real; 3], inv_axes: &[Real; 3]) -> (F4, [F4; 3]) {
-    let mut hi = [F4::splat(0.0); 3];
-    let mut lo = F4::splat(0.0);
+fn surface_excess_lanes(x: &[F8; 3], axes: &[Real; 3], inv_axes: &[Real; 3]) -> (F8, [F8; 3]) {
+    let mut hi = [F8::splat(0.0); 3];
+    let mut lo = F8::splat(0.0);
     for i in 0..3 {
         let q = x[i] * inv_axes[i];
         let (p, e) = exact::lanes::product(q, axes[i]);
@@ -603,7 +604,7 @@ fn surface_excess_lanes(x: &[F4; 3], axes: &[Real; 3], inv_axes: &[Real; 3]) -> 
     }
     let (s01, e01) = exact::lanes::sum(hi[0], hi[1]);
     let (s012, e012) = exact::lanes::sum(s01, hi[2]);
-    let (excess, e_one) = exact::lanes::sum(s012, F4::splat(-1.0));
+    let (excess, e_one) = exact::lanes::sum(s012, F8::splat(-1.0));
     (excess + (((e01 + e012) + e_one) + lo), hi)
 }
 
@@ -647,14 +648,14 @@ pub(crate) mod exact {
         (p, ((ah * ah - p) + 2.0 * ah * al) + al * al)
     }
 
-    /// The same transformations on four lanes, operation for operation.
+    /// The same transformations on lanes, operation for operation.
     pub(crate) mod lanes {
         use super::{split as split_scalar, SPLITTER};
-        use crate::lanes::F4;
+        use crate::lanes::Lanes;
         use crate::Real;
 
         #[inline(always)]
-        fn split(a: F4) -> (F4, F4) {
+        fn split<const N: usize>(a: Lanes<N>) -> (Lanes<N>, Lanes<N>) {
             let c = SPLITTER * a;
             let hi = c - (c - a);
             (hi, a - hi)
@@ -662,7 +663,7 @@ pub(crate) mod exact {
 
         /// [`super::sum`] lane by lane.
         #[inline(always)]
-        pub(crate) fn sum(a: F4, b: F4) -> (F4, F4) {
+        pub(crate) fn sum<const N: usize>(a: Lanes<N>, b: Lanes<N>) -> (Lanes<N>, Lanes<N>) {
             let s = a + b;
             let bb = s - a;
             (s, (a - (s - bb)) + (b - bb))
@@ -670,7 +671,7 @@ pub(crate) mod exact {
 
         /// [`super::product`] lane by lane, by the same `b` in every lane.
         #[inline(always)]
-        pub(crate) fn product(a: F4, b: Real) -> (F4, F4) {
+        pub(crate) fn product<const N: usize>(a: Lanes<N>, b: Real) -> (Lanes<N>, Lanes<N>) {
             let p = a * b;
             let (ah, al) = split(a);
             let (bh, bl) = split_scalar(b);
@@ -679,7 +680,7 @@ pub(crate) mod exact {
 
         /// [`super::square`] lane by lane.
         #[inline(always)]
-        pub(crate) fn square(a: F4) -> (F4, F4) {
+        pub(crate) fn square<const N: usize>(a: Lanes<N>) -> (Lanes<N>, Lanes<N>) {
             let p = a * a;
             let (ah, al) = split(a);
             (p, ((ah * ah - p) + 2.0 * ah * al) + al * al)
@@ -719,7 +720,7 @@ mod tests {
     /// distance, with the factors' class: `Some(true)` must take the lane path (outside, not
     /// beyond the far field), `Some(false)` must not, `None` either (within 1e-12 of the
     /// surface). A few non-finite and degenerate points follow, then a deterministic shuffle
-    /// so that every chunk of four mixes cases.
+    /// so that every chunk of lanes mixes cases.
     fn batch_points(axes: [f64; 3]) -> Vec<(Vec3, Option<bool>)> {
         let factors = [
             (0.0, Some(false)),
@@ -804,7 +805,7 @@ mod tests {
                 .unwrap();
             let cases = batch_points(axes);
             let points: Vec<Vec3> = cases.iter().map(|c| c.0).collect();
-            assert_ne!(points.len() % LANES, 0, "a remainder is exercised");
+            assert_ne!(points.len() % WIDE, 0, "a remainder is exercised");
             let scalar: Vec<Field> = points.iter().map(|r| body.field(r)).collect();
             let placeholder = Field {
                 potential: 0.0,
@@ -844,8 +845,8 @@ mod tests {
                 assert_eq!(bits(field), bits(reference));
             }
             // Which lanes take the lane path.
-            for chunk in cases.chunks_exact(LANES) {
-                let (_, taken) = body.field_lanes([chunk[0].0, chunk[1].0, chunk[2].0, chunk[3].0]);
+            for chunk in cases.chunks_exact(WIDE) {
+                let (_, taken) = body.field_lanes(std::array::from_fn(|l| chunk[l].0));
                 for (case, taken) in chunk.iter().zip(taken) {
                     if let Some(expected) = case.1 {
                         assert_eq!(taken, expected, "lane path at {:?} for {axes:?}", case.0);

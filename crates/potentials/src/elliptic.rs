@@ -608,7 +608,7 @@ mod tests {
     #[test]
     fn interleaved_groups_are_the_single_group_bit_for_bit() {
         let lanes = |kc: [f64; LANES], snc: [f64; LANES], pi: [bool; LANES]| {
-            (F4(kc), F4(snc), M4::from_flags(pi))
+            (F4::new(kc), F4::new(snc), M4::from_flags(pi))
         };
         let groups = [
             lanes(

@@ -448,7 +448,7 @@ impl Spheroid {
     #[inline(always)]
     fn field_lanes(&self, points: [Vec3; LANES]) -> ([Field; LANES], [bool; LANES]) {
         let s = &self.scaled;
-        let coordinate = |i: usize| F4(std::array::from_fn(|l| points[l][i] * s.inv_scale));
+        let coordinate = |i: usize| F4::new(std::array::from_fn(|l| points[l][i] * s.inv_scale));
         let (px, py, pz) = (coordinate(0), coordinate(1), coordinate(2));
         let rho2 = px * px + py * py;
         let z2 = pz * pz;
@@ -539,7 +539,7 @@ impl Spheroid {
             let inv_q = big_c * s.inv_d;
             let positive = q.gt(zero);
             // The scalar atan and ln, lane by lane, on the lanes of this branch only.
-            let g = F4(std::array::from_fn(|l| {
+            let g = F4::new(std::array::from_fn(|l| {
                 if !closed.flags()[l] {
                     0.0
                 } else if positive.flags()[l] {
@@ -598,7 +598,7 @@ impl crate::lanes::Batched for Spheroid {
     }
 }
 
-impl crate::lanes::LaneField for Spheroid {
+impl crate::lanes::LaneField<LANES> for Spheroid {
     #[inline(always)]
     fn field_lanes(&self, points: [Vec3; LANES]) -> ([Field; LANES], [bool; LANES]) {
         Spheroid::field_lanes(self, points)
