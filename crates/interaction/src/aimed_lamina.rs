@@ -1397,6 +1397,7 @@ fn refine_from(
     let settings = ladder_settings(options, budget);
     let settings = crate::strategy::ladder::LadderSettings {
         jump: true,
+        geometric: true,
         ..settings
     };
     run_ladder(

@@ -49,6 +49,7 @@ impl Strategy for AimedLadder {
         let settings = LadderSettings {
             jump: true,
             single_step: aim.cluster == 0,
+            geometric: true,
             ..ladder_settings(options, budget)
         };
         let grids = &mut self.grids;
