@@ -60,15 +60,16 @@
 //!   points at a time, in lanes: each scalar operation is written once for the eight lanes so
 //!   that the compiler issues it as two vector instructions on independent registers, which
 //!   hides the latency of the divisions and square roots (four lanes, one register, took 22 %
-//!   longer per interaction on the pose set's ellipsoid pairs: [`crate::lanes`]). Newton's iteration and the duplication run until every lane
-//!   has converged, a converged lane's values kept by selection; each lane sums the series to
-//!   its own degree. Every lane performs the scalar operations in the scalar order and nothing
-//!   is fused, so each result is bit for bit [`Potential::field`]'s (a unit test compares the
-//!   bits over needles, disks and near-spheres, from $10^{-12}$ above the surface to $10^{19}$
-//!   body sizes, inside points and non-finite ones mixed in). A point with $F_0 \le 0$ (inside
-//!   or on the body), beyond the far field, not finite, or whose $A_i$ leave $2^{\pm 300}$ is
-//!   evaluated by [`Potential::field`]. On x86-64 the lane code is compiled twice, with AVX
-//!   (four lanes per instruction; FMA not enabled) and without, and the CPU picks at run time.
+//!   longer per interaction on the pose set's ellipsoid pairs). Newton's iteration and the
+//!   duplication run until every lane has converged, a converged lane's values kept by
+//!   selection; each lane sums the series to its own degree. Every lane performs the scalar
+//!   operations in the scalar order and nothing is fused, so each result is bit for bit
+//!   [`Potential::field`]'s (a unit test compares the bits over needles, disks and
+//!   near-spheres, from $10^{-12}$ above the surface to $10^{19}$ body sizes, inside points and
+//!   non-finite ones mixed in). A point with $F_0 \le 0$ (inside or on the body), beyond the
+//!   far field, not finite, or whose $A_i$ leave $2^{\pm 300}$ is evaluated by
+//!   [`Potential::field`]. On x86-64 the lane code is compiled twice, with AVX (four lanes per
+//!   instruction; FMA not enabled) and without, and the CPU picks at run time.
 //!
 //! Measured against the Dirichlet integral at 36 digits (mpmath) for axes 3:2:1, 1:0.5:0.01,
 //! 1:0.3:10⁻⁴, 10⁻⁴:2·10⁻⁴:1, nearly equal axes and SI magnitudes, from $10^{-12}$ above the
