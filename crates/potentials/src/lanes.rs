@@ -392,4 +392,31 @@ mod tests {
         same(m.select(a, b), [1.5, 0.0, f64::NAN, f64::NAN]);
         assert!(m.any() && !m.all() && m.or(m.not()).all() && !m.and(m.not()).any());
     }
+
+    /// At eight lanes too (the ellipsoid's width): every lane's operation is its own, and
+    /// `any` and `all` see each lane (a single set or cleared lane, in every position).
+    #[test]
+    fn eight_lanes_are_lane_by_lane() {
+        let a = F8::new([1.5, -0.0, f64::NAN, 3.0, 7.0, -2.0, 1e300, 0.5]);
+        let b = F8::new([0.25, 0.0, 2.0, f64::NAN, -7.0, 4.0, 1e300, 0.5]);
+        let bits = |x: F8| x.0.map(f64::to_bits);
+        let each = |f: fn(f64, f64) -> f64| std::array::from_fn(|l| f(a.0[l], b.0[l]).to_bits());
+        assert_eq!(bits(a + b), each(|x, y| x + y));
+        assert_eq!(bits(a * b), each(|x, y| x * y));
+        assert_eq!(bits(a / b), each(|x, y| x / y));
+        assert_eq!(bits(a.max(b).sqrt()), each(|x, y| x.max(y).sqrt()));
+        let le = a.le(b);
+        assert_eq!(le.flags(), std::array::from_fn(|l| a.0[l] <= b.0[l]));
+        assert_eq!(
+            bits(le.select(a, b)),
+            each(|x, y| if x <= y { x } else { y })
+        );
+        for l in 0..WIDE {
+            let one = M8::from_flags(std::array::from_fn(|k| k == l));
+            assert!(one.any() && !one.all(), "lane {l} alone");
+            let all_but_one = one.not();
+            assert!(all_but_one.any() && !all_but_one.all(), "all but lane {l}");
+        }
+        assert!(M8::from_flags([true; WIDE]).all() && !M8::from_flags([false; WIDE]).any());
+    }
 }
