@@ -46,7 +46,7 @@
 //! $10^{150}$. Elsewhere we agree with ellip to 8 ulp. One call
 //! replaces four of ellip's.
 
-use crate::lanes::Lanes;
+use crate::lanes::F8;
 
 /// $R_F(x, y, z)$ and $R_D$ with each argument in the last slot, from one duplication loop.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -294,7 +294,7 @@ fn series<const K: usize>(e2: f64, e3: f64, deviations: [f64; 3]) -> (f64, [f64;
     (rf, rd)
 }
 
-/// The three $R_D$ of [`symmetric_integrals_in_range`] for `N` argument triples at once,
+/// The three $R_D$ of [`symmetric_integrals_in_range`] for eight argument triples at once,
 /// lane $l$ at $(x_l, y_l, z_l)$, each bit for bit the scalar result.
 ///
 /// Every lane must satisfy [`shares_division`] (a caller substitutes a placeholder such as
@@ -304,14 +304,14 @@ fn series<const K: usize>(e2: f64, e3: f64, deviations: [f64; 3]) -> (f64, [f64;
 /// to the largest degree any lane needs, each lane's terms beyond its own degree skipped. $R_F$
 /// is not formed (the ellipsoid's field does not use it).
 #[inline(always)]
-pub(crate) fn rd_lanes<const N: usize>(x: Lanes<N>, y: Lanes<N>, z: Lanes<N>) -> [Lanes<N>; 3] {
+pub(crate) fn rd_lanes(x: F8, y: F8, z: F8) -> [F8; 3] {
     let (mut xn, mut yn, mut zn) = (x, y, z);
     let mu0 = (x + y + z) / 3.0;
     let (dx0, dy0) = (mu0 - x, mu0 - y);
     let spread = dx0.abs().max(dy0.abs()).max((mu0 - z).abs()) / SERIES_THRESHOLD;
     let mut mu = mu0;
-    let mut factor = Lanes::<N>::splat(1.0);
-    let mut sums = [Lanes::<N>::splat(0.0); 3];
+    let mut factor = F8::splat(1.0);
+    let mut sums = [F8::splat(0.0); 3];
     for _ in 0..MAX_STEPS {
         // The scalar loop's exit test, negated (a NaN keeps a lane going, as there).
         let active = (spread * factor).le(mu).not();
@@ -340,23 +340,20 @@ pub(crate) fn rd_lanes<const N: usize>(x: Lanes<N>, y: Lanes<N>, z: Lanes<N>) ->
     let e2 = zx * zy - zz * zz;
     let e3 = zx * zy * zz;
     let deviation = zx.abs().max(zy.abs()).max(zz.abs());
-    let low = deviation.le(Lanes::<N>::splat(1e-3));
-    let middle = deviation.le(Lanes::<N>::splat(0.01));
+    let low = deviation.le(F8::splat(1e-3));
+    let middle = deviation.le(F8::splat(0.01));
     let degree = low.select(
-        Lanes::<N>::splat(6.0),
-        middle.select(
-            Lanes::<N>::splat(8.0),
-            Lanes::<N>::splat(SERIES_TERMS as f64),
-        ),
+        F8::splat(6.0),
+        middle.select(F8::splat(8.0), F8::splat(SERIES_TERMS as f64)),
     );
     // Three fixed-degree instantiations (fully unrolled): the lowest that covers every lane.
     let deviations = [zx, zy, zz];
     let rd_series = if !middle.all() {
-        series_lanes::<SERIES_TERMS, N>(e2, e3, deviations, degree)
+        series_lanes::<SERIES_TERMS>(e2, e3, deviations, degree)
     } else if !low.all() {
-        series_lanes::<8, N>(e2, e3, deviations, degree)
+        series_lanes::<8>(e2, e3, deviations, degree)
     } else {
-        series_lanes::<6, N>(e2, e3, deviations, degree)
+        series_lanes::<6>(e2, e3, deviations, degree)
     };
     let inv_sqrt_mu = 1.0 / mu.sqrt();
     let tail = factor * inv_sqrt_mu / mu;
@@ -370,26 +367,17 @@ pub(crate) fn rd_lanes<const N: usize>(x: Lanes<N>, y: Lanes<N>, z: Lanes<N>) ->
 /// The $R_D$ series of [`series`] through degree $K - 1$ for the lanes, each lane's terms
 /// from its own `degree` on skipped (its sums then stop where the scalar loop stops).
 #[inline(always)]
-fn series_lanes<const K: usize, const N: usize>(
-    e2: Lanes<N>,
-    e3: Lanes<N>,
-    deviations: [Lanes<N>; 3],
-    degree: Lanes<N>,
-) -> [Lanes<N>; 3] {
-    let mut p = [Lanes::<N>::splat(0.0); K];
-    p[0] = Lanes::<N>::splat(1.0);
+fn series_lanes<const K: usize>(e2: F8, e3: F8, deviations: [F8; 3], degree: F8) -> [F8; 3] {
+    let mut p = [F8::splat(0.0); K];
+    p[0] = F8::splat(1.0);
     for n in 1..K - 1 {
-        let older = if n >= 2 {
-            p[n - 2]
-        } else {
-            Lanes::<N>::splat(0.0)
-        };
+        let older = if n >= 2 { p[n - 2] } else { F8::splat(0.0) };
         p[n + 1] = RECURRENCE[n].0 * e2 * p[n - 1] + RECURRENCE[n].1 * e3 * older;
     }
-    let mut c = [Lanes::<N>::splat(0.0); 3];
-    let mut rd = [Lanes::<N>::splat(0.0); 3];
+    let mut c = [F8::splat(0.0); 3];
+    let mut rd = [F8::splat(0.0); 3];
     for (n, &p_n) in p.iter().enumerate() {
-        let live = Lanes::<N>::splat(n as f64).lt(degree);
+        let live = F8::splat(n as f64).lt(degree);
         for i in 0..3 {
             let next_c = deviations[i] * c[i] + p_n;
             rd[i] = live.select(rd[i] + next_c * RD_WEIGHTS[n], rd[i]);
@@ -610,7 +598,7 @@ mod tests {
         let mut degrees = [0usize; 3];
         // The width the ellipsoid's field uses.
         for chunk in triples.chunks_exact(crate::lanes::WIDE) {
-            let lane = |i: usize| crate::lanes::F8::new(std::array::from_fn(|l| chunk[l][i]));
+            let lane = |i: usize| F8::new(std::array::from_fn(|l| chunk[l][i]));
             let rd = rd_lanes(lane(0), lane(1), lane(2));
             for (l, &[x, y, z]) in chunk.iter().enumerate() {
                 let reference = symmetric_integrals_in_range(x, y, z).rd;

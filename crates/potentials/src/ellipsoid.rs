@@ -652,19 +652,20 @@ pub(crate) mod exact {
     /// The same transformations on lanes, operation for operation.
     pub(crate) mod lanes {
         use super::{split as split_scalar, SPLITTER};
-        use crate::lanes::Lanes;
+        use crate::lanes::Lane;
         use crate::Real;
 
         #[inline(always)]
-        fn split<const N: usize>(a: Lanes<N>) -> (Lanes<N>, Lanes<N>) {
-            let c = SPLITTER * a;
+        fn split<L: Lane>(a: L) -> (L, L) {
+            // SPLITTER · a, lane by lane (the constant on the right: the same product).
+            let c = a * SPLITTER;
             let hi = c - (c - a);
             (hi, a - hi)
         }
 
         /// [`super::sum`] lane by lane.
         #[inline(always)]
-        pub(crate) fn sum<const N: usize>(a: Lanes<N>, b: Lanes<N>) -> (Lanes<N>, Lanes<N>) {
+        pub(crate) fn sum<L: Lane>(a: L, b: L) -> (L, L) {
             let s = a + b;
             let bb = s - a;
             (s, (a - (s - bb)) + (b - bb))
@@ -672,7 +673,7 @@ pub(crate) mod exact {
 
         /// [`super::product`] lane by lane, by the same `b` in every lane.
         #[inline(always)]
-        pub(crate) fn product<const N: usize>(a: Lanes<N>, b: Real) -> (Lanes<N>, Lanes<N>) {
+        pub(crate) fn product<L: Lane>(a: L, b: Real) -> (L, L) {
             let p = a * b;
             let (ah, al) = split(a);
             let (bh, bl) = split_scalar(b);
@@ -681,10 +682,10 @@ pub(crate) mod exact {
 
         /// [`super::square`] lane by lane.
         #[inline(always)]
-        pub(crate) fn square<const N: usize>(a: Lanes<N>) -> (Lanes<N>, Lanes<N>) {
+        pub(crate) fn square<L: Lane>(a: L) -> (L, L) {
             let p = a * a;
             let (ah, al) = split(a);
-            (p, ((ah * ah - p) + 2.0 * ah * al) + al * al)
+            (p, ((ah * ah - p) + L::splat(2.0) * ah * al) + al * al)
         }
     }
 }

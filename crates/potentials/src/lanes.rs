@@ -8,12 +8,15 @@
 //! FMA is enabled anywhere), so a lane's result is bit for bit the scalar code's when the same
 //! operations are applied in the same order.
 //!
-//! The width is a parameter. Four lanes ([`F4`]) fill an AVX register. The ellipsoid's field
-//! runs eight ([`F8`], two registers per operation): its Newton iteration and Carlson
+//! Two widths. Four lanes ([`F4`], written out lane by lane) fill an AVX register: the disk,
+//! the spheroid and the elliptic integrals. The ellipsoid's field runs eight ([`F8`], loops
+//! over a width parameter, two registers per operation): its Newton iteration and Carlson
 //! duplication are chains of divisions and square roots that each wait for the previous one,
 //! and a second, independent register of four points fills the latency (measured on the pose
-//! set's ellipsoid pairs: 20 % less time per interaction). The disk and the spheroid keep
-//! four: with eight, a disk pair near contact took 25 % longer and a spheroid pair 4 %.
+//! set's ellipsoid pairs: 20 % less time per interaction). With eight lanes a disk pair near
+//! contact took 25 % longer and a spheroid pair 4 %; the four lanes written as loops cost the
+//! paper's (spheroid) pair 2–5 %, and the eight written four at a time cost the ellipsoid
+//! 11 %. Code for either width is generic over [`Lane`].
 
 use crate::{Field, Real, Vec3};
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -24,19 +27,23 @@ pub(crate) const LANES: usize = 4;
 /// Number of lanes of [`F8`] and [`M8`].
 pub(crate) const WIDE: usize = 8;
 
-/// One `f64` per lane.
+/// Four `f64` lanes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct F4(pub(crate) [f64; LANES]);
+
+/// Four flags, each an all-ones or all-zeros bit pattern (the form a vector comparison
+/// produces, so that selections compile to bitwise operations rather than branches).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct M4(pub(crate) [u64; LANES]);
+
+/// `N` `f64` lanes, operated on by loops over the lanes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Lanes<const N: usize>(pub(crate) [f64; N]);
 
-/// One flag per lane, as an all-ones or all-zeros bit pattern (the form a vector comparison
-/// produces, so that selections compile to bitwise operations rather than branches).
+/// `N` flags, as for [`M4`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Mask<const N: usize>(pub(crate) [u64; N]);
 
-/// Four lanes.
-pub(crate) type F4 = Lanes<LANES>;
-/// Four flags.
-pub(crate) type M4 = Mask<LANES>;
 /// Eight lanes.
 pub(crate) type F8 = Lanes<WIDE>;
 /// Eight flags.
@@ -49,6 +56,131 @@ fn flag(v: bool) -> u64 {
         u64::MAX
     } else {
         0
+    }
+}
+
+impl F4 {
+    /// The same value in every lane.
+    #[inline(always)]
+    pub(crate) fn splat(v: f64) -> Self {
+        Self([v; LANES])
+    }
+
+    /// The lanes `v`.
+    #[inline(always)]
+    pub(crate) const fn new(v: [f64; LANES]) -> Self {
+        Self(v)
+    }
+
+    #[inline(always)]
+    fn map(self, f: impl Fn(f64) -> f64) -> Self {
+        Self([f(self.0[0]), f(self.0[1]), f(self.0[2]), f(self.0[3])])
+    }
+
+    #[inline(always)]
+    fn zip(self, other: Self, f: impl Fn(f64, f64) -> f64) -> Self {
+        Self([
+            f(self.0[0], other.0[0]),
+            f(self.0[1], other.0[1]),
+            f(self.0[2], other.0[2]),
+            f(self.0[3], other.0[3]),
+        ])
+    }
+
+    #[inline(always)]
+    fn compare(self, other: Self, f: impl Fn(f64, f64) -> bool) -> M4 {
+        M4([
+            flag(f(self.0[0], other.0[0])),
+            flag(f(self.0[1], other.0[1])),
+            flag(f(self.0[2], other.0[2])),
+            flag(f(self.0[3], other.0[3])),
+        ])
+    }
+
+    /// Lane-wise `f64::sqrt`.
+    #[inline(always)]
+    pub(crate) fn sqrt(self) -> Self {
+        self.map(f64::sqrt)
+    }
+
+    /// Lane-wise `f64::abs`.
+    #[inline(always)]
+    pub(crate) fn abs(self) -> Self {
+        self.map(f64::abs)
+    }
+
+    /// Lane-wise `self <= other` (false where either is NaN).
+    #[inline(always)]
+    pub(crate) fn le(self, other: Self) -> M4 {
+        self.compare(other, |a, b| a <= b)
+    }
+
+    /// Lane-wise `self < other` (false where either is NaN).
+    #[inline(always)]
+    pub(crate) fn lt(self, other: Self) -> M4 {
+        self.compare(other, |a, b| a < b)
+    }
+
+    /// Lane-wise `self > other` (false where either is NaN).
+    #[inline(always)]
+    pub(crate) fn gt(self, other: Self) -> M4 {
+        self.compare(other, |a, b| a > b)
+    }
+}
+
+impl M4 {
+    /// Lanes set where `flags` is true.
+    #[inline(always)]
+    pub(crate) fn from_flags(flags: [bool; LANES]) -> Self {
+        Self(flags.map(flag))
+    }
+
+    /// The lanes as flags.
+    #[inline(always)]
+    pub(crate) fn flags(self) -> [bool; LANES] {
+        self.0.map(|m| m != 0)
+    }
+
+    /// Whether any lane is set.
+    #[inline(always)]
+    pub(crate) fn any(self) -> bool {
+        ((self.0[0] | self.0[1]) | (self.0[2] | self.0[3])) != 0
+    }
+
+    /// Whether every lane is set.
+    #[inline(always)]
+    pub(crate) fn all(self) -> bool {
+        ((self.0[0] & self.0[1]) & (self.0[2] & self.0[3])) == u64::MAX
+    }
+
+    /// Lane-wise negation.
+    #[inline(always)]
+    pub(crate) fn not(self) -> Self {
+        Self([!self.0[0], !self.0[1], !self.0[2], !self.0[3]])
+    }
+
+    /// Lane-wise and.
+    #[inline(always)]
+    pub(crate) fn and(self, other: Self) -> Self {
+        Self([
+            self.0[0] & other.0[0],
+            self.0[1] & other.0[1],
+            self.0[2] & other.0[2],
+            self.0[3] & other.0[3],
+        ])
+    }
+
+    /// `if_set` where the lane is set, `otherwise` elsewhere.
+    #[inline(always)]
+    pub(crate) fn select(self, if_set: F4, otherwise: F4) -> F4 {
+        let pick = |l: usize| {
+            if self.0[l] != 0 {
+                if_set.0[l]
+            } else {
+                otherwise.0[l]
+            }
+        };
+        F4([pick(0), pick(1), pick(2), pick(3)])
     }
 }
 
@@ -212,45 +344,77 @@ impl<const N: usize> Mask<N> {
 }
 
 macro_rules! lane_operator {
-    ($trait:ident, $method:ident, $op:tt) => {
-        impl<const N: usize> $trait for Lanes<N> {
-            type Output = Lanes<N>;
+    ([$($generics:tt)*] $lanes:ty, $trait:ident, $method:ident, $op:tt) => {
+        impl<$($generics)*> $trait for $lanes {
+            type Output = $lanes;
             #[inline(always)]
-            fn $method(self, other: Lanes<N>) -> Lanes<N> {
+            fn $method(self, other: $lanes) -> $lanes {
                 self.zip(other, |a, b| a $op b)
             }
         }
 
-        impl<const N: usize> $trait<f64> for Lanes<N> {
-            type Output = Lanes<N>;
+        impl<$($generics)*> $trait<f64> for $lanes {
+            type Output = $lanes;
             #[inline(always)]
-            fn $method(self, other: f64) -> Lanes<N> {
+            fn $method(self, other: f64) -> $lanes {
                 self.map(|a| a $op other)
             }
         }
 
-        impl<const N: usize> $trait<Lanes<N>> for f64 {
-            type Output = Lanes<N>;
+        impl<$($generics)*> $trait<$lanes> for f64 {
+            type Output = $lanes;
             #[inline(always)]
-            fn $method(self, other: Lanes<N>) -> Lanes<N> {
+            fn $method(self, other: $lanes) -> $lanes {
                 other.map(|b| self $op b)
             }
         }
     };
 }
 
-lane_operator!(Add, add, +);
-lane_operator!(Sub, sub, -);
-lane_operator!(Mul, mul, *);
-lane_operator!(Div, div, /);
+macro_rules! lane_type {
+    ([$($generics:tt)*] $lanes:ty) => {
+        lane_operator!([$($generics)*] $lanes, Add, add, +);
+        lane_operator!([$($generics)*] $lanes, Sub, sub, -);
+        lane_operator!([$($generics)*] $lanes, Mul, mul, *);
+        lane_operator!([$($generics)*] $lanes, Div, div, /);
 
-impl<const N: usize> Neg for Lanes<N> {
-    type Output = Lanes<N>;
-    #[inline(always)]
-    fn neg(self) -> Lanes<N> {
-        self.map(|a| -a)
-    }
+        impl<$($generics)*> Neg for $lanes {
+            type Output = $lanes;
+            #[inline(always)]
+            fn neg(self) -> $lanes {
+                self.map(|a| -a)
+            }
+        }
+
+        impl<$($generics)*> Lane for $lanes {
+            #[inline(always)]
+            fn splat(v: f64) -> Self {
+                <$lanes>::splat(v)
+            }
+        }
+    };
 }
+
+/// What code written for either lane width ([`F4`], [`F8`]) uses: IEEE arithmetic lane by
+/// lane, with `f64` on the right (a constant on the left is written [`Lane::splat`]).
+pub(crate) trait Lane:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Add<f64, Output = Self>
+    + Sub<f64, Output = Self>
+    + Mul<f64, Output = Self>
+    + Div<f64, Output = Self>
+    + Neg<Output = Self>
+{
+    /// The same value in every lane.
+    fn splat(v: f64) -> Self;
+}
+
+lane_type!([] F4);
+lane_type!([const N: usize] Lanes<N>);
 
 /// A field that evaluates up to [`LANES`] points side by side: `batch` stores `pick` of each
 /// point's field, bit for bit [`Potential::field`](crate::Potential::field)'s. The entry points
@@ -383,14 +547,13 @@ mod tests {
         same(2.0 - a, std::array::from_fn(|l| 2.0 - a.0[l]));
         same(a / 3.0, std::array::from_fn(|l| a.0[l] / 3.0));
         same(-a, std::array::from_fn(|l| -a.0[l]));
-        same(a.max(b), std::array::from_fn(|l| a.0[l].max(b.0[l])));
         same(a.abs().sqrt(), std::array::from_fn(|l| a.0[l].abs().sqrt()));
         assert_eq!(a.le(b).flags(), [false, true, false, false]);
         assert_eq!(a.lt(b).flags(), [false, false, false, false]);
         assert_eq!(a.gt(b).flags(), [true, false, false, false]);
         let m = M4::from_flags([true, false, true, false]);
         same(m.select(a, b), [1.5, 0.0, f64::NAN, f64::NAN]);
-        assert!(m.any() && !m.all() && m.or(m.not()).all() && !m.and(m.not()).any());
+        assert!(m.any() && !m.all() && !m.and(m.not()).any() && !m.not().all());
     }
 
     /// At eight lanes too (the ellipsoid's width): every lane's operation is its own, and
