@@ -276,12 +276,7 @@ proptest! {
         rot_a in prop::array::uniform3(-2.0..2.0f64),
         rot_b in prop::array::uniform3(-2.0..2.0f64),
     ) {
-        let (a, b) = (spheroid(ratio_a), spheroid(ratio_b));
-        let r = a.bounding_radius() + b.bounding_radius() + gap * a.bounding_radius().max(b.bounding_radius());
-        let direction = Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
-        let pose_a = Pose::new(Vec3::zeros(), Vec3::from(rot_a));
-        let pose_b = Pose::new(direction * r, Vec3::from(rot_b));
-        both_surfaces_agree(&a, &pose_a, &b, &pose_b)?;
+        extreme_case(ratio_a, ratio_b, gap, [theta, phi], rot_a, rot_b)?;
     }
 
     /// A unit disk and a disk or a thin oblate spheroid (c/a = 1e-3 … 0.3; radius 0.3 … 1) in
@@ -301,17 +296,90 @@ proptest! {
         rot_a in prop::array::uniform3(-2.0..2.0f64),
         rot_b in prop::array::uniform3(-2.0..2.0f64),
     ) {
-        let a = Body::disk(UniformDisk::new(1.0, 1.0).unwrap()).unwrap();
-        let b = if other_disk {
-            Body::disk(UniformDisk::new(radius, 1.0).unwrap()).unwrap()
-        } else {
-            Body::spheroid(Spheroid::new(radius, radius * flattening, 1.0).unwrap()).unwrap()
-        };
-        let direction = Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
-        let pose_a = Pose::new(Vec3::zeros(), Vec3::from(rot_a));
-        let mut pose_b = Pose::new(Vec3::zeros(), Vec3::from(rot_b));
-        let touch = touching_distance(&a, &pose_a, &b, &pose_b, &direction);
-        pose_b.translation.vector = direction * (touch + gap * radius);
-        both_surfaces_agree(&a, &pose_a, &b, &pose_b)?;
+        disks_case(other_disk, radius, flattening, gap, [theta, phi], rot_a, rot_b)?;
     }
+}
+
+/// The unit direction of polar angle `angles[0]` and azimuth `angles[1]`.
+fn direction_of(angles: [f64; 2]) -> Vec3 {
+    let [theta, phi] = angles;
+    Vec3::new(
+        theta.sin() * phi.cos(),
+        theta.sin() * phi.sin(),
+        theta.cos(),
+    )
+}
+
+/// One case of `extreme_shapes_and_poses`.
+fn extreme_case(
+    ratio_a: f64,
+    ratio_b: f64,
+    gap: f64,
+    angles: [f64; 2],
+    rot_a: [f64; 3],
+    rot_b: [f64; 3],
+) -> Result<(), TestCaseError> {
+    let (a, b) = (spheroid(ratio_a), spheroid(ratio_b));
+    let r = a.bounding_radius()
+        + b.bounding_radius()
+        + gap * a.bounding_radius().max(b.bounding_radius());
+    let pose_a = Pose::new(Vec3::zeros(), Vec3::from(rot_a));
+    let pose_b = Pose::new(direction_of(angles) * r, Vec3::from(rot_b));
+    both_surfaces_agree(&a, &pose_a, &b, &pose_b)
+}
+
+/// One case of `disks_near_contact`.
+fn disks_case(
+    other_disk: bool,
+    radius: f64,
+    flattening: f64,
+    gap: f64,
+    angles: [f64; 2],
+    rot_a: [f64; 3],
+    rot_b: [f64; 3],
+) -> Result<(), TestCaseError> {
+    let a = Body::disk(UniformDisk::new(1.0, 1.0).unwrap()).unwrap();
+    let b = if other_disk {
+        Body::disk(UniformDisk::new(radius, 1.0).unwrap()).unwrap()
+    } else {
+        Body::spheroid(Spheroid::new(radius, radius * flattening, 1.0).unwrap()).unwrap()
+    };
+    let direction = direction_of(angles);
+    let pose_a = Pose::new(Vec3::zeros(), Vec3::from(rot_a));
+    let mut pose_b = Pose::new(Vec3::zeros(), Vec3::from(rot_b));
+    let touch = touching_distance(&a, &pose_a, &b, &pose_b, &direction);
+    pose_b.translation.vector = direction * (touch + gap * radius);
+    both_surfaces_agree(&a, &pose_a, &b, &pose_b)
+}
+
+/// Two cases the random search found on November 28 where the two surfaces differ by more
+/// than the sum of their estimates (both results still well inside [`TOLERANCE`]): a
+/// spheroid of aspect 4.5 beside a needle of aspect 554 at gap 0.04 (over the needle, the
+/// product rule's levels 16 and 18 change by 6.1e-12 and the estimate is 1.0e-11, the true
+/// error 2.4e-11: the azimuths, capped at two per polar node, are short at both levels), and
+/// a disk 4.9e-4 radii from a disk of radius 0.61 (4.7e-11 apart). Open: run with
+/// `--ignored`; CI draws the property tests' cases from a fixed seed (`.ci/run`), which does
+/// not meet these two.
+#[test]
+#[ignore]
+fn known_understated_estimates() {
+    let extreme = extreme_case(
+        4.455327380014961,
+        553.5629856237009,
+        0.039735887133106516,
+        [2.9688960593760254, 4.924965356834155],
+        [1.6748082346169413, 0.0, 1.8473685341623864],
+        [0.9872453935358675, -0.43709362616315733, 0.9861004341418086],
+    );
+    let disks = disks_case(
+        true,
+        0.6069315141756274,
+        0.3,
+        0.0004856022716100196,
+        [2.0641677489543295, 3.1190462541523325],
+        [0.33803488222228684, 0.5928899774531934, 0.06581594290295377],
+        [0.11035000987559469, -1.1642705752688303, 1.070400441707932],
+    );
+    assert!(extreme.is_ok(), "{extreme:?}");
+    assert!(disks.is_ok(), "{disks:?}");
 }
