@@ -96,36 +96,6 @@ impl F4 {
             flag(f(self.0[3], other.0[3])),
         ])
     }
-
-    /// Lane-wise `f64::sqrt`.
-    #[inline(always)]
-    pub(crate) fn sqrt(self) -> Self {
-        self.map(f64::sqrt)
-    }
-
-    /// Lane-wise `f64::abs`.
-    #[inline(always)]
-    pub(crate) fn abs(self) -> Self {
-        self.map(f64::abs)
-    }
-
-    /// Lane-wise `self <= other` (false where either is NaN).
-    #[inline(always)]
-    pub(crate) fn le(self, other: Self) -> M4 {
-        self.compare(other, |a, b| a <= b)
-    }
-
-    /// Lane-wise `self < other` (false where either is NaN).
-    #[inline(always)]
-    pub(crate) fn lt(self, other: Self) -> M4 {
-        self.compare(other, |a, b| a < b)
-    }
-
-    /// Lane-wise `self > other` (false where either is NaN).
-    #[inline(always)]
-    pub(crate) fn gt(self, other: Self) -> M4 {
-        self.compare(other, |a, b| a > b)
-    }
 }
 
 impl M4 {
@@ -224,40 +194,10 @@ impl<const N: usize> Lanes<N> {
         Mask(out)
     }
 
-    /// Lane-wise `f64::sqrt`.
-    #[inline(always)]
-    pub(crate) fn sqrt(self) -> Self {
-        self.map(f64::sqrt)
-    }
-
-    /// Lane-wise `f64::abs`.
-    #[inline(always)]
-    pub(crate) fn abs(self) -> Self {
-        self.map(f64::abs)
-    }
-
     /// Lane-wise `f64::max` (a NaN loses to a number, as there).
     #[inline(always)]
     pub(crate) fn max(self, other: Self) -> Self {
         self.zip(other, f64::max)
-    }
-
-    /// Lane-wise `self <= other` (false where either is NaN).
-    #[inline(always)]
-    pub(crate) fn le(self, other: Self) -> Mask<N> {
-        self.compare(other, |a, b| a <= b)
-    }
-
-    /// Lane-wise `self < other` (false where either is NaN).
-    #[inline(always)]
-    pub(crate) fn lt(self, other: Self) -> Mask<N> {
-        self.compare(other, |a, b| a < b)
-    }
-
-    /// Lane-wise `self > other` (false where either is NaN).
-    #[inline(always)]
-    pub(crate) fn gt(self, other: Self) -> Mask<N> {
-        self.compare(other, |a, b| a > b)
     }
 }
 
@@ -371,8 +311,43 @@ macro_rules! lane_operator {
     };
 }
 
+/// The operations of a lane type defined from its `map`, `zip` and `compare` (whose forms
+/// differ between the widths): arithmetic, negation, square root, absolute value, comparisons
+/// into `$mask`, and [`Lane`].
 macro_rules! lane_type {
-    ([$($generics:tt)*] $lanes:ty) => {
+    ([$($generics:tt)*] $lanes:ty, $mask:ty) => {
+        impl<$($generics)*> $lanes {
+            /// Lane-wise `f64::sqrt`.
+            #[inline(always)]
+            pub(crate) fn sqrt(self) -> Self {
+                self.map(f64::sqrt)
+            }
+
+            /// Lane-wise `f64::abs`.
+            #[inline(always)]
+            pub(crate) fn abs(self) -> Self {
+                self.map(f64::abs)
+            }
+
+            /// Lane-wise `self <= other` (false where either is NaN).
+            #[inline(always)]
+            pub(crate) fn le(self, other: Self) -> $mask {
+                self.compare(other, |a, b| a <= b)
+            }
+
+            /// Lane-wise `self < other` (false where either is NaN).
+            #[inline(always)]
+            pub(crate) fn lt(self, other: Self) -> $mask {
+                self.compare(other, |a, b| a < b)
+            }
+
+            /// Lane-wise `self > other` (false where either is NaN).
+            #[inline(always)]
+            pub(crate) fn gt(self, other: Self) -> $mask {
+                self.compare(other, |a, b| a > b)
+            }
+        }
+
         lane_operator!([$($generics)*] $lanes, Add, add, +);
         lane_operator!([$($generics)*] $lanes, Sub, sub, -);
         lane_operator!([$($generics)*] $lanes, Mul, mul, *);
@@ -413,8 +388,8 @@ pub(crate) trait Lane:
     fn splat(v: f64) -> Self;
 }
 
-lane_type!([] F4);
-lane_type!([const N: usize] Lanes<N>);
+lane_type!([] F4, M4);
+lane_type!([const N: usize] Lanes<N>, Mask<N>);
 
 /// A field that evaluates up to [`LANES`] points side by side: `batch` stores `pick` of each
 /// point's field, bit for bit [`Potential::field`](crate::Potential::field)'s. The entry points
