@@ -1535,40 +1535,30 @@ mod tests {
     fn the_singular_point_nearest_the_rim_is_found() {
         let mut checked = 0;
         for seed in [12, 13] {
-            for case in pose_set(seed, &[0.05, 0.2, 1.0, 5.0], 4)
-                .iter()
-                .filter(|c| c.label.contains("disk"))
-            {
-                for (x, px, y, py) in both_sides(case) {
-                    let BodyShape::Disk(lamina) = x.shape() else {
-                        continue;
-                    };
-                    let (map, _) = engine_map(px, py);
-                    let radius = lamina.radius();
-                    let set = singular_set(y);
-                    let distance = |phi: Real| {
-                        let r_y =
-                            map.apply(&Vec3::new(radius * phi.cos(), radius * phi.sin(), 0.0));
-                        (set.nearest(&r_y) - r_y).norm()
-                    };
-                    let scan = 4096;
-                    let step = std::f64::consts::TAU / Real::from(scan);
-                    let best = (0..scan)
-                        .map(|k| Real::from(k) * step)
-                        .min_by(|a, b| distance(*a).total_cmp(&distance(*b)))
-                        .unwrap();
-                    let phi = golden_section(&distance, best - step, best + step).unwrap();
-                    let reference = distance(phi);
-                    let (q_rim, _) = nearest_to_rim(radius, y, &map);
-                    let found = ((q_rim.xy().norm() - radius).powi(2) + q_rim.z * q_rim.z).sqrt();
-                    assert!(
-                        found <= reference * (1.0 + 1e-12),
-                        "{} (seed {seed}): {found:e} against {reference:e}",
-                        case.label
-                    );
-                    checked += 1;
-                }
-            }
+            for_each_disk_side(seed, "disk", |case, lamina, y, map| {
+                let radius = lamina.radius();
+                let set = singular_set(y);
+                let distance = |phi: Real| {
+                    let r_y = map.apply(&Vec3::new(radius * phi.cos(), radius * phi.sin(), 0.0));
+                    (set.nearest(&r_y) - r_y).norm()
+                };
+                let scan = 4096;
+                let step = std::f64::consts::TAU / Real::from(scan);
+                let best = (0..scan)
+                    .map(|k| Real::from(k) * step)
+                    .min_by(|a, b| distance(*a).total_cmp(&distance(*b)))
+                    .unwrap();
+                let phi = golden_section(&distance, best - step, best + step).unwrap();
+                let reference = distance(phi);
+                let (q_rim, _) = nearest_to_rim(radius, y, map);
+                let found = ((q_rim.xy().norm() - radius).powi(2) + q_rim.z * q_rim.z).sqrt();
+                assert!(
+                    found <= reference * (1.0 + 1e-12),
+                    "{} (seed {seed}): {found:e} against {reference:e}",
+                    case.label
+                );
+                checked += 1;
+            });
         }
         assert!(checked >= 96, "{checked}");
     }
@@ -1983,6 +1973,37 @@ fn both_sides(
     ]
 }
 
+/// Calls `visit(case, lamina, y, map)` for each side of each case of the random-pose set of
+/// `seed` (four per pair of kinds, gaps 0.05 to 5) whose label contains `label` and whose
+/// integrated body is a disk: the disk, the other body and the engine's frame map.
+#[cfg(test)]
+fn for_each_disk_side(
+    seed: u64,
+    label: &str,
+    mut visit: impl FnMut(&crate::work_precision::PoseCase, &Lamina, &Body, &FrameMap),
+) {
+    use crate::body::BodyShape;
+    for case in crate::work_precision::pose_set(seed, &[0.05, 0.2, 1.0, 5.0], 4)
+        .iter()
+        .filter(|c| c.label.contains(label))
+    {
+        for (x, px, y, py) in both_sides(case) {
+            if let BodyShape::Disk(lamina) = x.shape() {
+                visit(case, lamina, y, &engine_map(px, py).0);
+            }
+        }
+    }
+}
+
+/// The pose set's seed of the measuring tools: `LEVEL_ERRORS_SEED`, 12 by default.
+#[cfg(test)]
+fn level_errors_seed() -> u64 {
+    std::env::var("LEVEL_ERRORS_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(12)
+}
+
 /// A disk case of the random-pose set as the measuring tools see it: the disk X the default
 /// engine integrates over, in the engine's frame, with its plan and the independent reference
 /// (the ladder at 1e-13 over the other body).
@@ -2026,12 +2047,8 @@ impl MeasuredDisk<'_> {
 #[cfg(test)]
 fn measured_disks(mut visit: impl FnMut(&MeasuredDisk<'_>)) {
     use crate::body::BodyShape;
-    let seed = std::env::var("LEVEL_ERRORS_SEED")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(12);
     let only = std::env::var("LEVEL_ERRORS_ONLY").unwrap_or_default();
-    for case in crate::work_precision::pose_set(seed, &[0.05, 0.2, 1.0, 5.0], 4)
+    for case in crate::work_precision::pose_set(level_errors_seed(), &[0.05, 0.2, 1.0, 5.0], 4)
         .iter()
         .filter(|c| c.label.contains("disk") && c.label.contains(only.as_str()))
     {
@@ -2082,49 +2099,34 @@ fn measured_disks(mut visit: impl FnMut(&MeasuredDisk<'_>)) {
 #[cfg(test)]
 mod plan_timing {
     use super::*;
-    use crate::body::BodyShape;
-    use crate::work_precision::pose_set;
 
     #[test]
     #[ignore]
     fn plan_timing() {
-        let seed = std::env::var("LEVEL_ERRORS_SEED")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(12);
         let (mut plan_ns, mut nodes_ns, mut count) = (0.0, 0.0, 0);
-        for case in pose_set(seed, &[0.05, 0.2, 1.0, 5.0], 4)
-            .iter()
-            .filter(|c| c.label.contains("disk-disk"))
-        {
-            for (x, px, y, py) in both_sides(case) {
-                let BodyShape::Disk(lamina) = x.shape() else {
-                    continue;
-                };
-                let (map, _) = engine_map(px, py);
-                let Some(aim) = lamina_aim(lamina, y, &map, 1e-12) else {
-                    continue;
-                };
-                let n = 2000;
-                let t = std::time::Instant::now();
-                for _ in 0..n {
-                    std::hint::black_box(lamina_aim(lamina, y, std::hint::black_box(&map), 1e-12));
-                }
-                plan_ns += t.elapsed().as_nanos() as f64 / n as f64;
-                let mut w = LaminaWorkspace::default();
-                let t = std::time::Instant::now();
-                for _ in 0..n {
-                    std::hint::black_box(
-                        w.nodes(lamina, &aim, aim.start)
-                            .unwrap()
-                            .area_points()
-                            .len(),
-                    );
-                }
-                nodes_ns += t.elapsed().as_nanos() as f64 / n as f64;
-                count += 1;
+        for_each_disk_side(level_errors_seed(), "disk-disk", |_, lamina, y, map| {
+            let Some(aim) = lamina_aim(lamina, y, map, 1e-12) else {
+                return;
+            };
+            let n = 2000;
+            let t = std::time::Instant::now();
+            for _ in 0..n {
+                std::hint::black_box(lamina_aim(lamina, y, std::hint::black_box(map), 1e-12));
             }
-        }
+            plan_ns += t.elapsed().as_nanos() as f64 / n as f64;
+            let mut w = LaminaWorkspace::default();
+            let t = std::time::Instant::now();
+            for _ in 0..n {
+                std::hint::black_box(
+                    w.nodes(lamina, &aim, aim.start)
+                        .unwrap()
+                        .area_points()
+                        .len(),
+                );
+            }
+            nodes_ns += t.elapsed().as_nanos() as f64 / n as f64;
+            count += 1;
+        });
         println!(
             "{count} aims: plan {:.0} ns, nodes at start {:.0} ns (mean)",
             plan_ns / count as f64,
