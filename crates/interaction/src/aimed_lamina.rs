@@ -1484,17 +1484,7 @@ mod tests {
             .iter()
             .filter(|c| c.label.contains("disk"))
         {
-            let chosen = crate::InteractionEngine::default()
-                .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
-                .map(|r| r.integrated_over)
-                .unwrap_or(None);
-            let over_b =
-                chosen == Some(crate::Side::B) || !matches!(case.a.shape(), BodyShape::Disk(_));
-            let (x, px, y, py, sign) = if over_b {
-                (&case.b, &case.pose_b, &case.a, &case.pose_a, -1.0)
-            } else {
-                (&case.a, &case.pose_a, &case.b, &case.pose_b, 1.0)
-            };
+            let (sign, x, px, y, py) = engine_side(case);
             let BodyShape::Disk(lamina) = x.shape() else {
                 panic!("{}: no disk", case.label);
             };
@@ -1995,6 +1985,31 @@ fn for_each_disk_side(
     }
 }
 
+/// The side of a disk case the default engine integrates over (A unless the engine chose B or
+/// A is no disk), as (sign, X, X's pose, Y, Y's pose): the sign is +1 where X is A (the
+/// reference's force is on A), −1 where it is B.
+#[cfg(test)]
+fn engine_side(
+    case: &crate::work_precision::PoseCase,
+) -> (
+    Real,
+    &Body,
+    &surfgrav_potentials::Pose,
+    &Body,
+    &surfgrav_potentials::Pose,
+) {
+    use crate::body::BodyShape;
+    let chosen = crate::InteractionEngine::default()
+        .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
+        .map(|r| r.integrated_over)
+        .unwrap_or(None);
+    if chosen == Some(crate::Side::B) || !matches!(case.a.shape(), BodyShape::Disk(_)) {
+        (-1.0, &case.b, &case.pose_b, &case.a, &case.pose_a)
+    } else {
+        (1.0, &case.a, &case.pose_a, &case.b, &case.pose_b)
+    }
+}
+
 /// The pose set's seed of the measuring tools: `LEVEL_ERRORS_SEED`, 12 by default.
 #[cfg(test)]
 fn level_errors_seed() -> u64 {
@@ -2052,17 +2067,7 @@ fn measured_disks(mut visit: impl FnMut(&MeasuredDisk<'_>)) {
         .iter()
         .filter(|c| c.label.contains("disk") && c.label.contains(only.as_str()))
     {
-        let chosen = crate::InteractionEngine::default()
-            .interact(&case.a, &case.pose_a, &case.b, &case.pose_b)
-            .map(|r| r.integrated_over)
-            .unwrap_or(None);
-        let over_b =
-            chosen == Some(crate::Side::B) || !matches!(case.a.shape(), BodyShape::Disk(_));
-        let (sign, x, px, y, py) = if over_b {
-            (-1.0, &case.b, &case.pose_b, &case.a, &case.pose_a)
-        } else {
-            (1.0, &case.a, &case.pose_a, &case.b, &case.pose_b)
-        };
+        let (sign, x, px, y, py) = engine_side(case);
         let BodyShape::Disk(lamina) = x.shape() else {
             continue;
         };
