@@ -422,10 +422,6 @@ fn disk_beside_disk_near_contact_certifies_honestly() {
 ///   most) are short: at polar level 128 the error is 8.8e-8 / 6.5e-9 / 8.4e-11 / 3.0e-14
 ///   with 0.5 / 0.75 / 1 / 2 times them, and the ladder certified 3.6e-11 with a true error
 ///   of 1.1e-10 (the tolerance 1e-10).
-/// - a unit disk beside an oblate spheroid of radius 0.83 and c/a 0.158, 6.8e-4 of its radius
-///   apart: over the spheroid, with [`BUDGET`] (the default budget's ladder needs 572,832
-///   evaluations and certifies 1.8e-13, true 3.9e-14), the ladder starts lower so that two
-///   levels fit and certifies 9.1e-13 with a true error of 1.3e-12.
 ///
 /// Open: run with `--ignored`; CI draws the property tests' cases from a fixed seed
 /// (`.ci/run`), which does not meet these.
@@ -449,7 +445,20 @@ fn known_understated_estimates() {
         [-0.260371875125925, -0.4083462972065047, -0.4123864944899562],
         [0.8561927472502475, -1.326406029974911, -0.01459558682665597],
     ));
-    let budget = scene_agrees(disks_scene(
+    assert!(extreme.is_ok(), "{extreme:?}");
+    assert!(thin.is_ok(), "{thin:?}");
+}
+
+/// A unit disk beside an oblate spheroid of radius 0.83 and c/a 0.158, 6.8e-4 of its radius
+/// apart, found by the random search of `disks_near_contact`: over the spheroid the default
+/// budget's ladder needs 572,832 evaluations (certified 1.8e-13, true error 3.9e-14); with
+/// [`BUDGET`] it starts lower so that two levels fit, below the levels where the change
+/// between two bounds the coarser one's error, and certified 9.1e-13 with a true error of
+/// 1.3e-12. The first change of a start lowered for the budget now counts twice (`run_ladder`),
+/// and the two surfaces agree within their estimates; this fails without it.
+#[test]
+fn budget_lowered_start_certifies_honestly() {
+    scene_agrees(disks_scene(
         false,
         0.8299341250385275,
         0.15799264518957873,
@@ -457,8 +466,6 @@ fn known_understated_estimates() {
         [0.8377018834699617, 1.0552710578066402],
         [1.6867169515324048, 1.9005526196542837, 0.7040624878000195],
         [0.5591006789617712, 1.8099321706523368, 1.3490302593412353],
-    ));
-    assert!(extreme.is_ok(), "{extreme:?}");
-    assert!(thin.is_ok(), "{thin:?}");
-    assert!(budget.is_ok(), "{budget:?}");
+    ))
+    .unwrap();
 }

@@ -227,7 +227,8 @@ pub(crate) fn run_ladder(
     // Room for a full step above the first level: a start predicted at the top level (a
     // singular curve running close along a disk, e.g. two parallel disks 0.02 apart) would
     // otherwise evaluate one level, have nothing to compare it with, and report no result.
-    let mut level = start.min((Real::from(MAX_TRANSVERSE) / growth).floor() as u16 - 1);
+    let planned = start.min((Real::from(MAX_TRANSVERSE) / growth).floor() as u16 - 1);
+    let mut level = planned;
     // With a small budget, start low enough for two levels to fit (a reported best result
     // with its estimate is worth more than no result).
     while level > 2 {
@@ -239,6 +240,10 @@ pub(crate) fn run_ladder(
             .min(level - 1)
             .max(2);
     }
+    // Levels below the planned start are not yet in the regime where the change between two
+    // of them bounds the coarser one's error: the first change from a start lowered for the
+    // budget counts twice, as the uneven changes below do.
+    let lowered = level < planned;
     let mut previous: Option<Values> = None;
     let mut previous_change: Option<Real> = None;
     let mut previous_level = level;
@@ -271,7 +276,8 @@ pub(crate) fn run_ladder(
             // estimate is twice the change, or the tail of a geometric series with the
             // observed ratio ρ of the last two changes, change·ρ/(1 − ρ), if larger (the
             // change itself where the levels converge geometrically: `geometric`).
-            let slow = previous_change.map_or(0.0, |before: Real| {
+            let first = if lowered { 2.0 * change } else { 0.0 };
+            let slow = previous_change.map_or(first, |before: Real| {
                 let ratio = if before > 0.0 { change / before } else { 1.0 };
                 let ratio = ratio.min(0.99);
                 let floor = if settings.geometric && ratio <= GEOMETRIC_RATIO {
