@@ -350,11 +350,15 @@ fn antipode_rho(cluster: u8) -> Real {
 /// measured one by about 1.25 on the pose set (seed 12, gaps 0.05 to 5).
 const RIM_WEIGHT: Real = 0.8;
 
-/// Beyond this width $\theta\_\delta$ of the nearest singularity the rim is not sampled:
-/// farther from Y the rim's points are all seen near the pole's direction; on the pose set
-/// (seed 12, gaps 0.05 to 5) thresholds of 1 and 1.5 give the same start levels, and the
-/// sampling (a few microseconds) would be a sizeable part of a far interaction's cost (1999
-/// KW4, 226 evaluations).
+/// Beyond this width $\theta\_\delta$ of the nearest singularity the rim of a singular set
+/// smaller than its distance from X is not sampled: its points are then all seen near the
+/// pole's direction; on the pose set (seed 12, gaps 0.05 to 5) thresholds of 1 and 1.5 give
+/// the same start levels, and the sampling (a few microseconds) would be a sizeable part of a
+/// far interaction's cost (1999 KW4, 226 evaluations). A larger set is sampled at any width:
+/// a spheroid of size 0.32 at 0.56 from the rim of a unit disk (`pose_benchmark` seed 20,
+/// spheroid-disk gap 0.2 #1, width 1.01) started at 14 polar nodes from the nearest point
+/// alone and took 5,458 evaluations (its levels' changes fall below 1e-12 from 30 on); from
+/// its rim's start of 15, 4,306.
 const RIM_WIDTH: Real = 1.0;
 
 /// Points of the singular set sampled around its rim (besides the nearest point).
@@ -477,6 +481,14 @@ pub(crate) enum SingularSet {
 }
 
 impl SingularSet {
+    /// The largest distance of a point of the set from Y's centroid.
+    fn extent(&self) -> Real {
+        match *self {
+            SingularSet::Ellipse(s) => s.max(),
+            SingularSet::Circle(radius) | SingularSet::Ball(radius) => radius,
+        }
+    }
+
     /// The point of the set nearest to `r_y` (Y's frame); for a circle seen from its axis,
     /// a point of it.
     pub(crate) fn nearest(&self, r_y: &Vec3) -> Vec3 {
@@ -761,7 +773,7 @@ pub(crate) fn aim(
         });
     }
     let mut angles = [Complex::new(0.0, width); RIM_SAMPLES];
-    let (rim, count) = if width < RIM_WIDTH {
+    let (rim, count) = if width < RIM_WIDTH || set.extent() > delta {
         rim_samples(&set)
     } else {
         ([Vec3::zeros(); RIM_SAMPLES], 0)
