@@ -168,15 +168,7 @@ fn fixed_tables_do_not_certify_a_stalled_change() {
         .iter()
         .find(|c| c.label == "spheroid-ellipsoid gap 0.05 #0")
         .expect("the pose set has the case");
-    let (reference, certified) = independent_reference(
-        &case.a,
-        &case.pose_a,
-        &case.b,
-        &case.pose_b,
-        REFERENCE_TOLERANCE,
-    )
-    .unwrap();
-    assert!(certified);
+    let reference = certified_reference(case);
     assert_eq!(reference.integrated_over, Some(Side::A));
     let accurate = InteractionEngine::new(InteractionOptions {
         relative_tolerance: 1e-14,

@@ -57,6 +57,9 @@ struct Outcome {
     micros: f64,
 }
 
+/// Two bodies and their poses.
+type Scene = (Body, Pose, Body, Pose);
+
 /// The engine of the stress cases: [`TOLERANCE`], [`BUDGET`], integrating over `surface`.
 fn engine(surface: SurfaceChoice) -> InteractionEngine {
     InteractionEngine::new(InteractionOptions {
@@ -319,7 +322,7 @@ fn extreme_scene(
     angles: [f64; 2],
     rot_a: [f64; 3],
     rot_b: [f64; 3],
-) -> (Body, Pose, Body, Pose) {
+) -> Scene {
     let (a, b) = (spheroid(ratio_a), spheroid(ratio_b));
     let r = a.bounding_radius()
         + b.bounding_radius()
@@ -340,7 +343,7 @@ fn disks_scene(
     angles: [f64; 2],
     rot_a: [f64; 3],
     rot_b: [f64; 3],
-) -> (Body, Pose, Body, Pose) {
+) -> Scene {
     let a = Body::disk(UniformDisk::new(1.0, 1.0).unwrap()).unwrap();
     let b = if other_disk {
         Body::disk(UniformDisk::new(radius, 1.0).unwrap()).unwrap()
@@ -355,8 +358,26 @@ fn disks_scene(
     (a, pose_a, b, pose_b)
 }
 
+/// The engine's result on `scene` at `tolerance` over `surface` with `budget` evaluations.
+fn interact_at(
+    scene: &Scene,
+    tolerance: f64,
+    surface: SurfaceChoice,
+    budget: usize,
+) -> Result<Interaction, InteractionError> {
+    let (a, pose_a, b, pose_b) = scene;
+    InteractionEngine::new(InteractionOptions {
+        relative_tolerance: tolerance,
+        max_evaluations: budget,
+        surface,
+        ..InteractionOptions::default()
+    })
+    .unwrap()
+    .interact(a, pose_a, b, pose_b)
+}
+
 /// [`both_surfaces_agree`] on a scene of [`disks_scene`].
-fn scene_agrees(scene: (Body, Pose, Body, Pose)) -> Result<(), TestCaseError> {
+fn scene_agrees(scene: Scene) -> Result<(), TestCaseError> {
     let (a, pose_a, b, pose_b) = scene;
     both_surfaces_agree(&a, &pose_a, &b, &pose_b)
 }
@@ -369,7 +390,7 @@ fn scene_agrees(scene: (Body, Pose, Body, Pose)) -> Result<(), TestCaseError> {
 /// the two surfaces differed by more than their estimates at 1e-10, and at a tolerance of
 /// 1e-11 the result missed it (see `NEAR_ROW_SAMPLES` in `aimed_lamina.rs`). Both checks
 /// fail without the rows sampled near that radius.
-fn disk_beside_disk() -> (Body, Pose, Body, Pose) {
+fn disk_beside_disk() -> Scene {
     disks_scene(
         true,
         0.6069315141756274,
@@ -387,17 +408,9 @@ fn disk_beside_disk() -> (Body, Pose, Body, Pose) {
 #[test]
 fn disk_beside_disk_near_contact_certifies_honestly() {
     scene_agrees(disk_beside_disk()).unwrap();
-    let (a, pose_a, b, pose_b) = disk_beside_disk();
+    let scene = disk_beside_disk();
     let at = |tolerance: f64, surface: SurfaceChoice| {
-        InteractionEngine::new(InteractionOptions {
-            relative_tolerance: tolerance,
-            max_evaluations: 4_000_000,
-            surface,
-            ..InteractionOptions::default()
-        })
-        .unwrap()
-        .interact(&a, &pose_a, &b, &pose_b)
-        .unwrap()
+        interact_at(&scene, tolerance, surface, 4_000_000).unwrap()
     };
     let reference = at(1e-13, SurfaceChoice::B);
     let over_a = at(1e-11, SurfaceChoice::A);
@@ -448,7 +461,7 @@ fn known_understated_estimates() {
 }
 
 /// The scenes of [`known_understated_estimates`], named.
-fn known_cases() -> [(&'static str, (Body, Pose, Body, Pose)); 4] {
+fn known_cases() -> [(&'static str, Scene); 4] {
     [
         (
             "needle at gap 1",
@@ -509,17 +522,10 @@ fn known_cases() -> [(&'static str, (Body, Pose, Body, Pose)); 4] {
 /// that understates.
 #[test]
 fn engine_choice_certifies_the_known_cases() {
-    for (name, (a, pose_a, b, pose_b)) in known_cases() {
+    for (name, scene) in known_cases() {
         let at = |tolerance: f64, surface: SurfaceChoice| {
-            InteractionEngine::new(InteractionOptions {
-                relative_tolerance: tolerance,
-                max_evaluations: 40_000_000,
-                surface,
-                ..InteractionOptions::default()
-            })
-            .unwrap()
-            .interact(&a, &pose_a, &b, &pose_b)
-            .unwrap_or_else(|e| panic!("{name}: {e}"))
+            interact_at(&scene, tolerance, surface, 40_000_000)
+                .unwrap_or_else(|e| panic!("{name}: {e}"))
         };
         for tolerance in [1e-10, 1e-12] {
             let result = at(tolerance, SurfaceChoice::Automatic);
