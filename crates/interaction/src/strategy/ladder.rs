@@ -317,8 +317,10 @@ pub(crate) fn run_ladder(
             if estimate <= tolerance {
                 return Ok(result);
             }
-            if values.relative_change(&coarse) <= values.rounding {
-                // The levels agree to rounding: refining cannot lower the estimate.
+            if values.relative_change(&coarse) <= values.rounding && stalled <= tolerance {
+                // The levels agree to rounding: refining cannot lower the estimate. (Unless
+                // what stands above the tolerance is the rate before a sudden drop: the next
+                // level then shows whether the drop holds.)
                 return Err(not_met(tolerance, result));
             }
             best = Some(result);
