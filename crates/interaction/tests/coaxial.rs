@@ -248,3 +248,25 @@ fn parallel_axes_far_apart_certify_in_every_direction() {
         }
     }
 }
+
+/// A prolate spheroid 0.02 below an oblate one on a common axis (`near_axis_sweep` seed 2,
+/// case 40): the oblate spheroid's focal circle is a ring about the pole, whose polar count
+/// (17) the rim weight for points passing beside a pole had cut to 14, below the nearest
+/// point's 16; levels 16 and 18 then changed by 7.4e-14 with a true error of 1.2e-13. Taken
+/// at full weight (`RIM_WEIGHT` in `aimed.rs`), the ring starts the ladder at 17 and the
+/// estimate bounds the error; this fails without it.
+#[test]
+fn a_ring_about_the_pole_counts_at_full_strength() {
+    let a =
+        Body::spheroid(Spheroid::new(0.7025776701579083, 1.012346811581447, 1.0).unwrap()).unwrap();
+    let b =
+        Body::spheroid(Spheroid::new(0.981258448663338, 0.7478713111055548, 1.0).unwrap()).unwrap();
+    let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 1.955);
+    check(
+        "prolate below oblate, gap 0.02",
+        &a,
+        &b,
+        1.7802181226870017,
+        turn,
+    );
+}
