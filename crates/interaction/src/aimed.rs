@@ -470,6 +470,10 @@ pub(crate) struct Aim {
     /// azimuthal content is then small, and [`NEAR_AXIS_AZIMUTH_RATIO`] azimuths per polar
     /// node serve.
     pub(crate) near_axis: bool,
+    /// Whether the pole is on a common axis ([`Aim::coaxial`] or [`Aim::near_axis`]) and Y's
+    /// singular set is a circle about it: a ring off the pole, whose singularity makes the
+    /// polar rule's error oscillate from level to level (see `run_ladder`'s `oscillating`).
+    pub(crate) ring: bool,
 }
 
 /// The set where a body's exterior field, continued toward X, is singular (its body frame):
@@ -778,6 +782,7 @@ pub(crate) fn aim(
             known: false,
             coaxial,
             near_axis,
+            ring: false,
         });
     }
     let mut angles = [Complex::new(0.0, width); RIM_SAMPLES];
@@ -798,6 +803,7 @@ pub(crate) fn aim(
         known: true,
         coaxial,
         near_axis,
+        ring: (coaxial || near_axis) && matches!(set, SingularSet::Circle(_)),
     };
     let rim_weight = if coaxial { 1.0 } else { RIM_WEIGHT };
     let cost = |cluster: u8, start: u16| {

@@ -50,6 +50,7 @@ impl Strategy for AimedLadder {
             jump: true,
             single_step: aim.cluster == 0,
             geometric: true,
+            oscillating: aim.ring,
             ..ladder_settings(options, budget)
         };
         let grids = &mut self.grids;
