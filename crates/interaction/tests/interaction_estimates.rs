@@ -420,12 +420,6 @@ fn a_sudden_drop_after_a_slow_phase_is_confirmed_not_dropped() {
         };
         let result = at(1e-13, MethodChoice::Automatic);
         let nested = at(1e-13, MethodChoice::Nested);
-        let error = errors(&result, &nested).max();
-        assert!(
-            error <= result.error_estimate + nested.error_estimate,
-            "{separation}: error {error:e}, estimates {:e} + {:e}",
-            result.error_estimate,
-            nested.error_estimate
-        );
+        assert_within_estimates(&format!("{separation}"), &result, &nested);
     }
 }

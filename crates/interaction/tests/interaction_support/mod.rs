@@ -76,6 +76,18 @@ impl Errors {
     }
 }
 
+/// Asserts that `x` lies within its own estimate plus `reference`'s of `reference` (largest
+/// relative error of [`errors`]).
+pub fn assert_within_estimates(label: &str, x: &Interaction, reference: &Interaction) {
+    let error = errors(x, reference).max();
+    assert!(
+        error <= x.error_estimate + reference.error_estimate,
+        "{label}: error {error:e}, estimates {:e} + {:e}",
+        x.error_estimate,
+        reference.error_estimate
+    );
+}
+
 pub fn errors(x: &Interaction, reference: &Interaction) -> Errors {
     let v = reference.potential_energy.abs();
     Errors {
