@@ -11,6 +11,7 @@ use super::options::{InteractionOptions, MethodChoice, SurfaceChoice};
 use super::rules::{
     Parametrisation, TransverseRatio, CLUSTERING, MAX_TRANSVERSE, TRANSVERSE_RATIO,
 };
+use super::strategy::ladder::far_lamina_start;
 use nalgebra::UnitQuaternion;
 use surfgrav_potentials::{Pose, PoseExt};
 use surfgrav_surfaces::{Real, Vec3};
@@ -80,6 +81,11 @@ pub(crate) struct Placement {
     /// Whether every aimed rule of this side loses to the other side's predicted cost
     /// ([`Rival`]): then this side is not chosen, and it has no aim.
     pub(crate) outcompeted: bool,
+    /// The first transverse count the fixed lamina table needs for the angular singularity
+    /// of Y on X's rim, where X is a disk without the aimed lamina rule (otherwise 0; see
+    /// `far_lamina_start` in `strategy/ladder.rs`): the ladder starts there and the surface
+    /// choice predicts from it.
+    pub(crate) lamina_start: u16,
 }
 
 impl Placement {
@@ -118,6 +124,21 @@ impl Placement {
             aim,
             lamina_aim,
             outcompeted,
+            ..self
+        }
+    }
+
+    /// This placement with [`Placement::lamina_start`] set, where X is a disk that the fixed
+    /// lamina table integrates over.
+    fn with_lamina_start(self, x: &Body, y: &Body, options: &InteractionOptions) -> Self {
+        let lamina_start = match x.shape() {
+            BodyShape::Disk(_) if self.lamina_aim.is_none() => {
+                far_lamina_start(x, y, &self, options)
+            }
+            _ => 0,
+        };
+        Self {
+            lamina_start,
             ..self
         }
     }
@@ -258,7 +279,7 @@ pub(crate) fn predicted_cost(
     if let Some(aim) = &placement.aim {
         return aimed_cost(y, aim.cluster, aimed::grid_key(aim.start, aim).size());
     }
-    let t = Real::from(start_transverse(options, placement));
+    let t = Real::from(start_transverse(options, placement).max(placement.lamina_start));
     let kappa = TRANSVERSE_RATIO[usize::from(placement.ratio)];
     let mut nodes = t * t / kappa;
     if placement.half_azimuth {
@@ -356,8 +377,10 @@ pub(crate) fn place(
         aim: None,
         lamina_aim: None,
         outcompeted: false,
+        lamina_start: 0,
     }
-    .aimed(x, y, *options, rival))
+    .aimed(x, y, *options, rival)
+    .with_lamina_start(x, y, options))
 }
 
 /// The first transverse count of the ladder, predicted from the gap ratio $g$, the

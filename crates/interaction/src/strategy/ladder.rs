@@ -41,7 +41,7 @@ impl Strategy for FixedLadder {
         run_ladder(
             &ladder_settings(options, budget),
             p,
-            start_transverse(options, p).max(far_lamina_start(x, y, p, options)),
+            start_transverse(options, p).max(p.lamina_start),
             |level| table_size(x.shape(), &key(level)),
             // Both counts of a fixed table grow with the level.
             |_, _| true,
@@ -75,7 +75,12 @@ const FAR_LAMINA_ETA: Real = 1.0;
 /// to two levels more than before). Nearer ($\eta <$
 /// [`FAR_LAMINA_ETA`]) the table's azimuth clustering toward Y, which this count ignores,
 /// takes over, and the gap formula serves alone.
-fn far_lamina_start(x: &Body, y: &Body, p: &Placement, options: &InteractionOptions) -> u16 {
+pub(crate) fn far_lamina_start(
+    x: &Body,
+    y: &Body,
+    p: &Placement,
+    options: &InteractionOptions,
+) -> u16 {
     let BodyShape::Disk(lamina) = x.shape() else {
         return 0;
     };
