@@ -61,7 +61,11 @@
 //! tolerance, the change bounding the coarser level's error. From the third level on, the
 //! rate of the last two changes of the force predicts the level whose error is half the
 //! tolerance, and the ladder jumps there (at most 1.5 times the level, never twice in a row);
-//! the level after it certifies.
+//! the level after it certifies. With the pole on a common axis and Y's singular circle a
+//! ring about it, the ring's singular pair $\theta\_L \pm iw$ lies off the pole, the polar
+//! rule's error turns in phase from level to level, and two levels can agree by accident near
+//! a zero crossing: there the first change counts twice and every estimate is at least the
+//! change before it ([`Aim::ring`]).
 
 use super::body::{Body, BodyShape};
 use super::kernel::{FrameMap, SolidBlock, SolidSums, BLOCK};
