@@ -86,8 +86,9 @@ pub(crate) struct Placement {
     /// `far_lamina_start` in `strategy/ladder.rs`): the ladder starts there and the surface
     /// choice predicts from it.
     pub(crate) lamina_start: u16,
-    /// Whether Y is a disk that the aimed lamina rule integrates over (its side placed first):
-    /// only then does the aimed rule over X beside its rim carry [`AIMED_DISK_PENALTY`].
+    /// Whether Y is a disk that the aimed lamina rule integrates over (a disk's side is placed
+    /// first, [`likely_first`]): only then does the aimed rule over X beside its rim carry
+    /// [`AIMED_DISK_PENALTY`].
     pub(crate) beside_lamina: bool,
 }
 
@@ -283,8 +284,11 @@ pub(crate) fn choose_surface<'b>(
 /// Whether integrating over X in Y's field is worth placing before the other way round: X
 /// a disk (its lamina rule usually wins) or Y's field the cheaper one to evaluate.
 fn likely_first(x: &Body, y: &Body) -> bool {
-    matches!(x.shape(), BodyShape::Disk(_))
-        || y.potential().field_cost() < x.potential().field_cost()
+    let disk = |b: &Body| matches!(b.shape(), BodyShape::Disk(_));
+    // A disk beside a body of another kind always goes first, whatever the fields cost:
+    // the other side's aimed rule is then placed knowing whether the disk has an aimed
+    // lamina plan (`Placement::beside_lamina`).
+    disk(x) || (!disk(y) && y.potential().field_cost() < x.potential().field_cost())
 }
 
 /// Predicted cost of integrating over X in Y's field: the predicted table size
