@@ -575,3 +575,34 @@ fn budget_lowered_start_certifies_honestly() {
     ))
     .unwrap();
 }
+
+/// A disk of radius 0.98 held 8.9e-4 of its radius from a unit disk (a random draw near
+/// contact), integrated over itself as the engine chooses, at 1e-10: its ladder's changes
+/// fell by 0.17, 0.83, 0.04, 0.25, 0.31 and 0.05 per step, and the last, fast one certified
+/// its change alone, 1.8e-11, with a true error of 2.4e-11. After a slow step a fast one no
+/// longer does (`run_ladder`): the estimate bounds the error against the rule at 1e-13.
+/// Fails without it.
+#[test]
+fn an_erratic_ladder_does_not_certify_a_fast_step_alone() {
+    let scene = disks_scene(
+        true,
+        0.9831143953811822,
+        0.3,
+        0.000907929888872635,
+        [2.2852255086687348, 0.09324501183590699],
+        [
+            0.5560234312767449,
+            0.04767181866516059,
+            -0.15907344683124766,
+        ],
+        [-1.2958410106073779, 1.056204299169869, -1.843539941364271],
+    );
+    let result = interact_at(&scene, TOLERANCE, SurfaceChoice::Automatic, BUDGET).unwrap();
+    assert!(result.error_estimate <= TOLERANCE);
+    let side = match result.integrated_over {
+        Some(Side::A) => SurfaceChoice::A,
+        _ => SurfaceChoice::B,
+    };
+    let reference = interact_at(&scene, 1e-13, side, 40_000_000).unwrap();
+    assert_within_estimates("disk beside a disk at 8.9e-4", &result, &reference);
+}
