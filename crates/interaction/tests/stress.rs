@@ -576,6 +576,30 @@ fn budget_lowered_start_certifies_honestly() {
     .unwrap();
 }
 
+/// A disk of radius 0.47 held 3.7e-4 of its radius from a unit disk (found by
+/// `disks_near_contact`): over the unit disk at 1e-10 the radial rule planned against the
+/// other rim's pinches alone certified 1.0e-12 with a true error of 2.3e-12 (the levels'
+/// errors falling by 0.7 per step, the rule below its regime); with the plan at least a
+/// quarter of the cut plan (`CUT_FLOOR` in `aimed_lamina.rs`) both surfaces agree within
+/// their estimates. Fails without the floor.
+#[test]
+fn near_contact_radial_plans_keep_a_floor() {
+    scene_agrees(disks_scene(
+        true,
+        0.47261011304634387,
+        0.3,
+        0.0007876100601286762,
+        [1.1213585971217517, 0.4146117229168004],
+        [-0.44783188089213033, -0.981683452693339, 1.1156323591948194],
+        [
+            -0.04167980160931386,
+            0.3661836085289861,
+            -0.7819743975015649,
+        ],
+    ))
+    .unwrap();
+}
+
 /// A disk of radius 0.98 held 8.9e-4 of its radius from a unit disk (a random draw near
 /// contact), integrated over itself as the engine chooses, at 1e-10: its ladder's changes
 /// fell by 0.17, 0.83, 0.04, 0.25, 0.31 and 0.05 per step, and the last, fast one certified
