@@ -375,7 +375,7 @@ impl ClusteredSide {
     }
 
     /// A piece of length `length` clustered toward its start, where the integrand is singular
-    /// at $t^\ast = i\,$`width`, with another singularity `far` beyond its end: the sinh map
+    /// at $t^\ast = i\\,$`width`, with another singularity `far` beyond its end: the sinh map
     /// of that width, and the count of the less favourable of the two (the far one taken on
     /// the real axis, which only overstates it).
     fn toward_end(length: Real, width: Real, far: Real, log_tolerance: Real) -> Self {
@@ -1342,8 +1342,8 @@ const CUT_FLOOR: Real = 0.25;
 /// the quadratic of one factor has a double root (its discriminant vanishes: with
 /// $\sigma = s^2$, $(\alpha_0 + \sigma)^2 = \sigma(\beta_1 - i\gamma_1)(\beta_1 + i\gamma_1)$),
 /// or where a root of one factor meets one of the other (a point of the circle itself in X's
-/// plane, continued: X's plane meets Y's, $m_{1z}x + m_{2z}y + t_z = 0$, on the circle
-/// $x^2 + y^2 + 2x\,\mathbf m_1\cdot\mathbf t + 2y\,\mathbf m_2\cdot\mathbf t + \mathbf t\cdot\mathbf t = c^2$).
+/// plane, continued: X's plane meets Y's, $m\_{1z}x + m\_{2z}y + t_z = 0$, on the circle
+/// $x^2 + y^2 + 2x\\,\mathbf m_1\cdot\mathbf t + 2y\\,\mathbf m_2\cdot\mathbf t + \mathbf t\cdot\mathbf t = c^2$).
 /// Each as $\pm\sqrt{\sigma}$; returns the radii and their count (at most 8).
 fn circle_pinches(c: Real, rows: &CircleRows, map: &FrameMap) -> ([Complex<Real>; 8], usize) {
     let mut out = [Complex::new(0.0, 0.0); 8];
