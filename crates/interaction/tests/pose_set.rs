@@ -256,7 +256,8 @@ fn a_solid_beside_a_far_disk_is_not_penalised() {
 /// singularity sets its plan is split at both (`SplitRow`), and the radial rule is planned
 /// against the circle's pinches (`circle_pinches`), not every point of it as a cut. They took
 /// 26,742 and 17,858 evaluations; with split rows alone 11,193 and 4,231, with the pinches
-/// alone 14,200 and 7,624, with both 6,114 and 5,389: the bound 8,000 fails without either.
+/// alone (and the radial floor, `CUT_FLOOR`) 14,200 and 9,602, with both 6,114 and 6,134:
+/// the bound 8,000 fails without either.
 /// The results certify and agree with the independent reference.
 #[test]
 fn rows_split_at_both_singularities_and_pinch_planned_radii() {
