@@ -1604,7 +1604,11 @@ impl LaminaWorkspace {
                 let rule = this.rule(aim.count(piece, level))?;
                 let first = out.len();
                 for (&u, &w) in rule.nodes().iter().zip(rule.weights()) {
-                    let (t, dt) = piece.map(u);
+                    // The piece's sinh map by one exponential (sinh and cosh from e^{μu}; near
+                    // u = 0 within 1e-16·w of the library's sinh, far below the width).
+                    let e = (piece.mu * u).exp();
+                    let (sinh, cosh) = (0.5 * (e - e.recip()), 0.5 * (e + e.recip()));
+                    let (t, dt) = (piece.width * sinh, piece.width * piece.mu * cosh);
                     out.push((direction * t, 0.0, w * dt));
                 }
                 // The angle origin + direction·t, mirrored by the row's sign (a loop of its
