@@ -466,8 +466,8 @@ pub(crate) struct LaminaAim {
 /// sinh map of its own singularity's width.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct SplitRow {
-    /// $d$.
-    offset: Real,
+    /// $(\cos d, \sin d)$.
+    at_offset: (Real, Real),
     /// +1 where the other singularity lies at $+d$, −1 at $-d$ (the pieces' sines negated).
     sign: Real,
     /// $[0, m_a]$ from 0, $[m_a, d]$ from $d$ backward, $[d, d + m_b]$ from $d$, and
@@ -496,9 +496,12 @@ impl SplitRow {
         log_tolerance: Real,
         margin: Real,
     ) -> Self {
-        let delta = (near.cos * other.sin - near.sin * other.cos)
-            .atan2(near.cos * other.cos + near.sin * other.sin);
-        let d = delta.abs().max(Real::MIN_POSITIVE);
+        // The phasors' cosine and sine of the angle between them.
+        let (cos, sin) = (
+            near.cos * other.cos + near.sin * other.sin,
+            near.cos * other.sin - near.sin * other.cos,
+        );
+        let d = sin.atan2(cos).abs().max(Real::MIN_POSITIVE);
         let rest = std::f64::consts::TAU - d;
         let share = near.width / (near.width + other.width);
         let (m_a, m_b) = (d * share, rest * (1.0 - share));
@@ -511,8 +514,8 @@ impl SplitRow {
             }
         };
         Self {
-            offset: d,
-            sign: if delta < 0.0 { -1.0 } else { 1.0 },
+            at_offset: (cos, sin.abs()),
+            sign: if sin < 0.0 { -1.0 } else { 1.0 },
             pieces: [
                 piece(m_a, near.width, d - m_a),
                 piece(d - m_a, other.width, m_a),
@@ -524,7 +527,7 @@ impl SplitRow {
 
     /// Each piece's start angle, as its phasor $(\cos, \sin)$, and direction.
     fn origins(&self) -> [((Real, Real), Real); 4] {
-        let at_d = (self.offset.cos(), self.offset.sin());
+        let at_d = self.at_offset;
         [
             ((1.0, 0.0), 1.0),
             (at_d, -1.0),
@@ -1418,7 +1421,12 @@ fn table_entry(width: Real, eta: Real) -> usize {
 impl LaminaAim {
     /// A side's count at `level` (its predicted share, scaled with the level).
     fn count(&self, side: &ClusteredSide, level: u16) -> usize {
-        let scaled = side.predicted * Real::from(level) / Real::from(self.start.max(1));
+        self.scaled(side.predicted, level)
+    }
+
+    /// A predicted count scaled to `level`.
+    fn scaled(&self, predicted: Real, level: u16) -> usize {
+        let scaled = predicted * Real::from(level) / Real::from(self.start.max(1));
         (scaled.ceil() as usize).max(MIN_NODES)
     }
 
@@ -1448,13 +1456,7 @@ impl LaminaAim {
         // (p·(to − from)/start ≥ 1).
         let pieces = match self.rows {
             Some(_) if split => {
-                let least = ClusteredSide {
-                    length: PI,
-                    width: Real::INFINITY,
-                    predicted: SPLIT_MIN_PIECE,
-                    mu: 0.0,
-                };
-                more(&least)
+                self.scaled(SPLIT_MIN_PIECE, to) > self.scaled(SPLIT_MIN_PIECE, from)
                     && SPLIT_MIN_PIECE * Real::from(to.saturating_sub(from))
                         >= Real::from(self.start.max(1))
             }
@@ -1594,7 +1596,6 @@ impl LaminaWorkspace {
             }
             Ok(())
         };
-        // A split row's pieces about `centre` (absolute angles) or about 0 (turned later).
         // A split row's angles about its narrower singularity (turned with the row).
         let split_row = |this: &mut Self,
                          split: &SplitRow,
@@ -1974,11 +1975,6 @@ mod tests {
         assert!(checked >= 30, "{checked}");
     }
 
-    /// [`asinh_of`] on the imaginary axis is the principal branch: $\sinh$ of it gives the
-    /// argument back to 1e-15 relative, its imaginary part lies in $[0, \pi/2]$, and it agrees
-    /// with the general complex `asinh` to 1e-10 (that one loses digits to cancellation in
-    /// $1 - y^2$ next to the branch point $i$: 8e-15 at $y = 1 - 10^{-6}$); off the axis it is
-    /// that function.
     /// The split rows' sine and cosine against the library's over $[-2\pi, 2\pi]$ (every
     /// $10^{-4}$ and the ends): within $2\cdot10^{-15}$ (measured 1.4e-15: three doublings each
     /// about double the series' rounding). Node positions this close change a rule's result
@@ -1998,6 +1994,11 @@ mod tests {
         assert!(worst <= 2e-15, "worst difference {worst:e}");
     }
 
+    /// [`asinh_of`] on the imaginary axis is the principal branch: $\sinh$ of it gives the
+    /// argument back to 1e-15 relative, its imaginary part lies in $[0, \pi/2]$, and it agrees
+    /// with the general complex `asinh` to 1e-10 (that one loses digits to cancellation in
+    /// $1 - y^2$ next to the branch point $i$: 8e-15 at $y = 1 - 10^{-6}$); off the axis it is
+    /// that function.
     #[test]
     fn asinh_on_the_imaginary_axis() {
         for y in [0.0, 1e-9, 0.3, 0.999_999, 1.0, 1.000_001, 1.7, 40.0, 1e8] {

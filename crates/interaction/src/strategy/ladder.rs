@@ -357,9 +357,7 @@ pub(crate) fn run_ladder(
             if estimate <= tolerance {
                 return Ok(result);
             }
-            if values.relative_change(&coarse) <= values.rounding
-                && stalled.max(before_change) <= tolerance
-            {
+            if change <= values.rounding && stalled.max(before_change) <= tolerance {
                 // The levels agree to rounding: refining cannot lower the estimate. (Unless
                 // what stands above the tolerance is the rate or the change before a sudden
                 // drop: the next level then shows whether the drop holds.)
