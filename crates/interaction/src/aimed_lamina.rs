@@ -2444,7 +2444,7 @@ mod side_needs_experiment {
 /// The frame map the engine integrates a disk X in (`surface_choice::place`: X turned about
 /// its axis so that Y's centroid lies in its x–z plane).
 #[cfg(test)]
-fn engine_map(
+pub(crate) fn engine_map(
     px: &surfgrav_potentials::Pose,
     py: &surfgrav_potentials::Pose,
 ) -> (FrameMap, nalgebra::UnitQuaternion<Real>) {

@@ -140,6 +140,7 @@ mod aimed;
 mod assembly;
 mod body;
 mod closed_form;
+mod ellipse_rows;
 mod engine;
 mod error;
 mod kernel;
