@@ -33,7 +33,16 @@
 //! the stretch's points (the singular points nearest to the rim samples whose angular
 //! singularity on the rim is within [`STRETCH`] times the narrowest): the angular rules
 //! against their $(\varphi_k - \varphi_q) \pm i\eta_k$, the radial sides against their
-//! $s_k \pm ih_k$, the rim rule likewise about its own aim.
+//! $s_k \pm ih_k$, the rim rule likewise about its own aim. Each row's angles are clustered
+//! toward the narrower of $\mathbf q$ and the singular point nearest the rim on that row, and
+//! each entry of the angular table is planned against the stretch's points as the entry's own
+//! rows see them: each point's least width over those rows, offset from the rows' centre
+//! ([`entry_widths`]; the rows of one entry can lie near $\mathbf q$'s radius and near the
+//! rim at once, and a point is at its narrowest on one of them only). Where the stretch is a
+//! triaxial body's focal ellipse, each point's widths are multiplied by the ratio of the exact
+//! row singularity ([`EllipseRows`]) to the point model's on the point's own narrowest row
+//! (between 1 and [`EXACT_MAX_RATIO`]): treating each point of a curve as an isolated
+//! singular point understates the rows' widths by up to a factor 2.
 //!
 //! # A singular circle
 //!
@@ -76,6 +85,7 @@
 
 use crate::aimed::{nearest_on_ellipsoid, nearest_singular_point, singular_set, SingularSet};
 use crate::body::Body;
+use crate::ellipse_rows::EllipseRows;
 use crate::error::InteractionError;
 use crate::kernel::FrameMap;
 use crate::options::Interaction;
@@ -448,6 +458,10 @@ pub(crate) struct LaminaAim {
     /// Y's singular set is a circle: each row's angles are clustered toward its own
     /// singularity.
     rows: Option<CircleRows>,
+    /// Where the plan is the stretch's ([`near_stretch`]): $(\cos, \sin)$ of the azimuths of
+    /// the two row points ([`LaminaAim::singular`]); each row's angles turn toward its
+    /// narrower one ([`entry_widths`]).
+    turns: Option<[(Real, Real); 2]>,
     /// $\ln(1/\tau)$ of the plan (for the split rows, planned row by row).
     log_tolerance: Real,
     /// The entries of [`LaminaAim::angles`] whose rows are tried split (bit $k$: entry $k$).
@@ -940,6 +954,98 @@ fn near_stretch(
     (points, len)
 }
 
+/// The least angular width of each point of a stretch (`stretch`, as (azimuth, in-plane
+/// radius, height)) over the rows $s \in (0, R]$ of entry `k` of the angular table, for each
+/// of the two points `rows` (q and the point nearest the rim) over the rows it is the
+/// narrower of, written to `out[f]`; `any[f]`: some row of positive radius is entry `k`'s
+/// with point `f` the narrower. A row's entry is that of its narrower width $\eta(s)$
+/// (the rows' own choice, [`LaminaAim::angle_at`]): $2^k\eta_0 \le \eta(s) < 2^{k+1}\eta_0$.
+/// A point's width on the circle of radius $s$, $\cosh\eta = (s^2 + \rho^2)/(2 s s_p)$ with
+/// $\rho^2 = s_p^2 + h_p^2$, is least at $s = \rho$ and grows away from it on both sides, so
+/// over a union of intervals it is least at $\rho$ or at an end of one; the ends are where a
+/// row point's width crosses $2^k\eta_0$ or $2^{k+1}\eta_0$ (the roots of
+/// $s^2 - 2 s s_p\cosh\eta + \rho^2 = 0$), where the two row points are equally wide, and
+/// the rim.
+fn entry_widths(
+    radius: Real,
+    rows: &[(Real, Real); 2],
+    eta: Real,
+    k: usize,
+    stretch: &[(Real, Real, Real)],
+    out: &mut [[Real; MAX_SINGULAR]; 2],
+) -> [bool; 2] {
+    // η ≥ X for η = min(acosh c, 10) (width_of_cosh): c ≥ cosh X, and no row beyond 10.
+    let cosh_of = |x: Real| if x <= 10.0 { x.cosh() } else { Real::INFINITY };
+    let bound = |j: usize| eta * Real::from(j as i32).exp2();
+    let low = if k == 0 { 1.0 } else { cosh_of(bound(k)) };
+    let high = if k + 1 == ANGLE_TABLE {
+        Real::INFINITY
+    } else {
+        cosh_of(bound(k + 1))
+    };
+    // Ends computed to rounding lie on a boundary: admitted on either side.
+    let slack = 1e-12;
+    let mut best = [[Real::INFINITY; MAX_SINGULAR]; 2];
+    let mut any = [false; 2];
+    let mut visit = |s: Real| {
+        if !(s > 0.0 && s <= radius) {
+            return;
+        }
+        let c = rows.map(|(s_p, h_p)| angular_cosh(s, s_p, h_p));
+        let least = c[0].min(c[1]);
+        if !(least.is_finite() && least >= low * (1.0 - slack) && least < high * (1.0 + slack)) {
+            return;
+        }
+        for f in 0..2 {
+            if c[f] <= least * (1.0 + slack) {
+                any[f] = true;
+                for (b, &(_, s_j, h_j)) in best[f].iter_mut().zip(stretch) {
+                    *b = b.min(angular_cosh(s, s_j, h_j));
+                }
+            }
+        }
+    };
+    visit(radius);
+    for &(_, s_j, h_j) in stretch {
+        visit((s_j * s_j + h_j * h_j).sqrt());
+    }
+    for c in [low, high] {
+        if !c.is_finite() {
+            continue;
+        }
+        for &(s_p, h_p) in rows {
+            let b = s_p * c;
+            let disc = b * b - (s_p * s_p + h_p * h_p);
+            if disc >= 0.0 {
+                let root = disc.sqrt();
+                visit(b - root);
+                visit(b + root);
+            }
+        }
+    }
+    // Equal widths: s_r (s² + ρ_q²) = s_q (s² + ρ_r²).
+    let [(s_q, h_q), (s_r, h_r)] = *rows;
+    if s_r != s_q {
+        let square = (s_q * (s_r * s_r + h_r * h_r) - s_r * (s_q * s_q + h_q * h_q)) / (s_r - s_q);
+        if square > 0.0 {
+            visit(square.sqrt());
+        }
+    }
+    for (o, b) in out.iter_mut().zip(&best) {
+        for (o, &b) in o.iter_mut().zip(b) {
+            *o = width_of_cosh(b);
+        }
+    }
+    any
+}
+
+/// A root of [`EllipseRows`] stands for a stretch point's row singularity where it lies within
+/// this many widths (at least 0.1 rad) of the point's azimuth: one farther is another place's.
+const EXACT_NEAR: Real = 3.0;
+
+/// A stretch point's exact width is taken at most this many times its point model's.
+const EXACT_MAX_RATIO: Real = 2.0;
+
 /// A rim sample's nearest singular point joins the plan where its angular width on the rim
 /// is within this factor of the narrowest.
 const STRETCH: Real = 4.0;
@@ -1026,6 +1132,25 @@ pub(crate) fn lamina_aim(
         let width = angular_width((s_k * s_k + h_k * h_k).sqrt().min(radius), s_k, h_k);
         *o = Complex::new(offset(phi, angle_centre), width);
     }
+    // Where the stretch is a triaxial body's focal ellipse, each point's width on its own
+    // narrowest row, exact ([`EllipseRows`]) over the point model's (at least 1).
+    let mut exact_ratio = [1.0; MAX_SINGULAR];
+    if let (SingularSet::Ellipse(axes), false) = (singular_set(y), coaxial) {
+        if let Some(rows) = EllipseRows::of_axes(&axes, map) {
+            for (r, &(phi, s_k, h_k)) in exact_ratio.iter_mut().zip(stretch) {
+                let s = (s_k * s_k + h_k * h_k).sqrt().min(radius);
+                let width = angular_width(s, s_k, h_k);
+                let (sin, cos) = phi.sin_cos();
+                let t = rows.parameter_of(&map.apply(&Vec3::new(s * cos, s * sin, 0.0)));
+                if let Some(root) = rows.solve(s, Complex::new(phi, width), Complex::new(t, 0.0)) {
+                    let moved = (root.phi.re - phi + PI).rem_euclid(std::f64::consts::TAU) - PI;
+                    if moved.abs() <= EXACT_NEAR * width.max(0.1) {
+                        *r = (root.phi.im / width).clamp(1.0, EXACT_MAX_RATIO);
+                    }
+                }
+            }
+        }
+    }
     let angular = |k: i32| {
         let mut out = narrowest;
         for o in &mut out {
@@ -1099,7 +1224,39 @@ pub(crate) fn lamina_aim(
         } else if stretch.is_empty() {
             ClusteredSide::plan(PI, Complex::new(0.0, eta * Real::from(k).exp2()), tolerance)
         } else {
-            ClusteredSide::plan_many(PI, &angular(k)[..stretch.len()], tolerance, STRETCH_SEARCH)
+            // Each point at its least width over the rows of this entry where it has any
+            // (`entry_widths`); otherwise every point at its narrowest, widened by 2^k.
+            // Rows turn toward their narrower row point (q or the one nearest the rim):
+            // each family's rows see the points at offsets from its own centre.
+            let rows_q = [(s_q, h), (q_rim.xy().norm(), q_rim.z.abs())];
+            let centres = [angle_centre, q_rim.y.atan2(q_rim.x)];
+            let mut widths = [[0.0; MAX_SINGULAR]; 2];
+            let any = entry_widths(radius, &rows_q, eta, k as usize, stretch, &mut widths);
+            for family in &mut widths {
+                for (w, &r) in family.iter_mut().zip(&exact_ratio) {
+                    *w *= r;
+                }
+            }
+            if !any[0] && !any[1] {
+                return ClusteredSide::plan_many(
+                    PI,
+                    &angular(k)[..stretch.len()],
+                    tolerance,
+                    STRETCH_SEARCH,
+                );
+            }
+            let mut points = [Complex::new(0.0, 0.0); 2 * MAX_SINGULAR];
+            let mut len = 0;
+            for f in 0..2 {
+                if !any[f] {
+                    continue;
+                }
+                for (&(phi, ..), &width) in stretch.iter().zip(&widths[f]) {
+                    points[len] = Complex::new(offset(phi, centres[f]), width);
+                    len += 1;
+                }
+            }
+            ClusteredSide::plan_many(PI, &points[..len], tolerance, STRETCH_SEARCH)
         }
     };
     // A radial side from `origin` (`sign` -1: inward, +1: outward) of `length`, singular at
@@ -1154,8 +1311,9 @@ pub(crate) fn lamina_aim(
             return ClusteredSide::plan(length, singular, tolerance);
         }
         let mut all = [singular; MAX_SINGULAR + 1];
-        for (o, &(_, s_k, h_k)) in all.iter_mut().skip(1).zip(stretch) {
-            *o = Complex::new(sign * (s_k - origin), h_k.max(1e-12 * radius));
+        // The stretch's points widened by their exact rows' ratio (q's own model as it is).
+        for ((o, &(_, s_k, h_k)), &r) in all.iter_mut().skip(1).zip(stretch).zip(&exact_ratio) {
+            *o = Complex::new(sign * (s_k - origin), (r * h_k).max(1e-12 * radius));
         }
         ClusteredSide::plan_many(length, &all[..=stretch.len()], tolerance, STRETCH_SEARCH)
     };
@@ -1210,10 +1368,18 @@ pub(crate) fn lamina_aim(
                 continue;
             }
             let planned = plan_angle(k as i32).with_margin(angle_margin);
-            if planned.predicted < angle.predicted {
+            if planned.predicted < angle.predicted || (!stretch.is_empty() && circle.is_none()) {
                 angles[k] = planned;
             }
         }
+        // The stretch's entries are planned from their own rows: a wider entry can take more
+        // nodes than the first (a stretch point at its narrowest on rows far from q's
+        // radius). The sizes and the start count the dearest.
+        let angle =
+            angles
+                .iter()
+                .copied()
+                .fold(angle, |a, b| if b.predicted > a.predicted { b } else { a });
         // The entries whose plan the other singularity of their rows sets: planned for the
         // narrower singularity alone, they would take at most SPLIT_GAIN of the nodes; only
         // their rows are tried split (planning a split row costs about as much as a few of
@@ -1269,6 +1435,12 @@ pub(crate) fn lamina_aim(
         angles,
         coaxial,
         rows: circle,
+        turns: (!stretch.is_empty() && circle.is_none() && !coaxial).then(|| {
+            [angle_centre, q_rim.y.atan2(q_rim.x)].map(|phi| {
+                let (sin, cos) = phi.sin_cos();
+                (cos, sin)
+            })
+        }),
         log_tolerance,
         split_entries,
     })
@@ -1432,16 +1604,21 @@ impl LaminaAim {
 
     /// The angular side at radius `s`: the narrowest angular singularity of the two singular
     /// points on the circle of radius `s`, never wider clustered than the whole rule's.
-    fn angle_at(&self, s: Real) -> ClusteredSide {
-        let eta = width_of_cosh(
-            self.singular
-                .iter()
-                .map(|&(s_q, h)| angular_cosh(s, s_q, h))
-                .fold(Real::INFINITY, Real::min),
-        );
+    /// With the turn of its angles: toward the narrower point where the plan is the
+    /// stretch's ([`LaminaAim::turns`]; the shared lists are then about 0), none otherwise
+    /// (about [`LaminaAim::angle_centre`]).
+    fn angle_at(&self, s: Real) -> (ClusteredSide, (Real, Real)) {
+        let c = self.singular.map(|(s_q, h)| angular_cosh(s, s_q, h));
+        let eta = width_of_cosh(c[0].min(c[1]));
         // The tabulated side of the largest η not above this one (narrower: at least as
         // many nodes as the circle's own plan would take).
-        self.angles[table_entry(eta, self.angle_eta)]
+        let side = self.angles[table_entry(eta, self.angle_eta)];
+        let turn = match self.turns {
+            Some(turns) if c[0] <= c[1] => turns[0],
+            Some(turns) => turns[1],
+            None => (1.0, 0.0),
+        };
+        (side, turn)
     }
 
     /// Whether every 1-D rule of the table has more nodes at level `to` than at `from` (see
@@ -1640,9 +1817,10 @@ impl LaminaWorkspace {
         // nothing.
         // Rows clustered toward their own angle (a singular circle) share lists about 0,
         // turned row by row; the others share lists about the aim's centre.
-        let list_centre = match aim.rows {
-            Some(_) => 0.0,
-            None => aim.angle_centre,
+        let list_centre = if aim.rows.is_some() || aim.turns.is_some() {
+            0.0
+        } else {
+            aim.angle_centre
         };
         self.split_rows = 0;
         let mut built = [(aim.angle, 0, 0); ANGLE_TABLE];
@@ -1679,7 +1857,7 @@ impl LaminaWorkspace {
                     }
                     (shared, (near.cos, near.sin))
                 }
-                None => (aim.angle_at(s), (1.0, 0.0)),
+                None => aim.angle_at(s),
             };
             let range = match built[..distinct].iter().rev().find(|(b, ..)| *b == side) {
                 Some(&(_, first, end)) => first..end,

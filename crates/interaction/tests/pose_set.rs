@@ -266,3 +266,23 @@ fn rows_split_at_both_singularities_and_pinch_planned_radii() {
         8_000,
     );
 }
+
+/// A disk beside a triaxial ellipsoid near contact, whose focal ellipse runs near the disk
+/// along a stretch (seed 38 ellipsoid-disk gap 0.05 #1 and #2). Each row's angles turn toward
+/// the nearer of the two row points (the nearest singular point or the one nearest the rim),
+/// each table entry is planned from the stretch as its own rows see it (`entry_widths`), and
+/// the point model's widths are corrected by the exact row singularities of the ellipse
+/// (`EllipseRows`). They took 8,222 and 5,254 evaluations; with the turned rows and entries
+/// alone 6,600 and 4,040; with the exact widths too 4,486 and 4,040: the bound 5,000 fails on
+/// the old plan (both) and on the turned rows alone (#1).
+/// The results certify and agree with the independent reference.
+#[test]
+fn a_focal_ellipse_near_a_disk_is_planned_from_its_rows() {
+    certified_within(
+        &[
+            (38, "ellipsoid-disk gap 0.05 #1"),
+            (38, "ellipsoid-disk gap 0.05 #2"),
+        ],
+        5_000,
+    );
+}
