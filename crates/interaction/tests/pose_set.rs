@@ -286,3 +286,19 @@ fn a_focal_ellipse_near_a_disk_is_planned_from_its_rows() {
         5_000,
     );
 }
+
+/// The same near a focal ellipse whose nearest stretch is narrower than the rim samples'
+/// spacing (seed 24 ellipsoid-disk gap 0.05 #0, seed 34 #1): with the exact rows' correction
+/// the plan carries the stretch's margin, not the unresolved stretch's. They took 7,012 and
+/// 7,632 evaluations, 7,466 and 7,484 with the exact widths under the larger margin, and take
+/// 4,820 and 5,086: the bound 5,500 fails on both.
+#[test]
+fn a_corrected_focal_ellipse_needs_no_unresolved_margin() {
+    certified_within(
+        &[
+            (24, "ellipsoid-disk gap 0.05 #0"),
+            (34, "ellipsoid-disk gap 0.05 #1"),
+        ],
+        5_500,
+    );
+}
