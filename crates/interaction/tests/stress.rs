@@ -324,7 +324,7 @@ proptest! {
 }
 
 /// A unit disk A and an ellipsoid B
-/// of semi-axes $a$, $a\,r_b$, $a\,r_b r_c$ (`shape` = $[a, r_b, r_c]$), placed where they touch
+/// of semi-axes $a$, $a r_b$, $a r_b r_c$ (`shape` = $[a, r_b, r_c]$), placed where they touch
 /// along the direction `angles` and moved apart by `gap` times $a$.
 fn ellipsoid_scene(
     shape: [f64; 3],
