@@ -464,12 +464,13 @@ pub(crate) struct LaminaAim {
     turns: Option<[(Real, Real); 2]>,
     /// The stretch's widths are corrected by a focal ellipse's exact rows ([`EllipseRows`]),
     /// and carry [`STRETCH_MARGIN`] where the point model would carry [`AREA_MARGIN`]: the
-    /// ladder takes its first change twice (`LadderSettings::oscillating`). Found by 400
+    /// ladder treats the levels as `LadderSettings::oscillating` (the first change counts
+    /// twice, and every later estimate is at least the change before it). Found by 400
     /// random draws of a disk beside a triaxial ellipsoid near contact at 1e-10 (test
     /// `a_corrected_plan_takes_its_first_change_twice`, `tests/stress.rs`): a disk beside an
     /// ellipsoid of semi-axes 0.31, 0.20, 0.077 at 3.7e-3 certified 7.8e-11 from its first
     /// change (levels 55 and 61) while its result was 1.5e-10 from the other surface's
-    /// (certified 1.6e-13); taken twice, the draws' disagreements beyond the estimates fall
+    /// (certified 1.6e-13); with this, the draws' disagreements beyond the estimates fall
     /// from 5 to 4 of 367 (all four over the ellipsoid, as before the correction).
     corrected: bool,
     /// $\ln(1/\tau)$ of the plan (for the split rows, planned row by row).
@@ -1171,6 +1172,10 @@ pub(crate) fn lamina_aim(
     // rule's plan with STRETCH_MARGIN (`side_needs`), and take 4,820 and 5,086 evaluations
     // instead of 7,466 and 7,484 (pose sets 12-72: -0.2 %, 0 estimates exceeded).
     let margin = if exact_rows { STRETCH_MARGIN } else { margin };
+    // The two points whose narrower width picks a row's table entry and, for the stretch, its
+    // turn ([`LaminaAim::angle_at`]), as (in-plane radius, height) and azimuth.
+    let row_points = [(s_q, h), (q_rim.xy().norm(), q_rim.z.abs())];
+    let row_centres = [angle_centre, q_rim.y.atan2(q_rim.x)];
     let angular = |k: i32| {
         let mut out = narrowest;
         for o in &mut out {
@@ -1248,10 +1253,8 @@ pub(crate) fn lamina_aim(
             // (`entry_widths`); otherwise every point at its narrowest, widened by 2^k.
             // Rows turn toward their narrower row point (q or the one nearest the rim):
             // each family's rows see the points at offsets from its own centre.
-            let rows_q = [(s_q, h), (q_rim.xy().norm(), q_rim.z.abs())];
-            let centres = [angle_centre, q_rim.y.atan2(q_rim.x)];
             let mut widths = [[0.0; MAX_SINGULAR]; 2];
-            let any = entry_widths(radius, &rows_q, eta, k as usize, stretch, &mut widths);
+            let any = entry_widths(radius, &row_points, eta, k as usize, stretch, &mut widths);
             for family in &mut widths {
                 for (w, &r) in family.iter_mut().zip(&exact_ratio) {
                     *w *= r;
@@ -1272,7 +1275,7 @@ pub(crate) fn lamina_aim(
                     continue;
                 }
                 for (&(phi, ..), &width) in stretch.iter().zip(&widths[f]) {
-                    points[len] = Complex::new(offset(phi, centres[f]), width);
+                    points[len] = Complex::new(offset(phi, row_centres[f]), width);
                     len += 1;
                 }
             }
@@ -1449,14 +1452,14 @@ pub(crate) fn lamina_aim(
         rim_centre,
         rim,
         start: (largest.ceil() as u16).min(crate::rules::MAX_TRANSVERSE),
-        singular: [(s_q, h), (q_rim.xy().norm(), q_rim.z.abs())],
+        singular: row_points,
         angle_eta: eta,
         stretch_points: stretch.len(),
         angles,
         coaxial,
         rows: circle,
         turns: (!stretch.is_empty() && circle.is_none() && !coaxial).then(|| {
-            [angle_centre, q_rim.y.atan2(q_rim.x)].map(|phi| {
+            row_centres.map(|phi| {
                 let (sin, cos) = phi.sin_cos();
                 (cos, sin)
             })
@@ -2514,31 +2517,20 @@ mod tests {
             for fraction in [0.5, 0.8, 1.0] {
                 let s = fraction * lamina.radius();
                 let eta = rows.at(s)[0].width;
-                let trapezoid = |n: usize| {
-                    let step = std::f64::consts::TAU / n as Real;
-                    (0..n)
-                        .map(|k| {
-                            let phi = k as Real * step;
-                            let r = map.apply(&Vec3::new(s * phi.cos(), s * phi.sin(), 0.0));
-                            case.a.potential().field(&r).potential
-                        })
-                        .sum::<Real>()
-                        * step
-                };
-                let reference = trapezoid(4096);
-                let error = |n: usize| ((trapezoid(n) - reference) / reference).abs();
-                // Two counts whose errors lie in [1e-11, 1e-4], as far apart as possible.
-                let counts: Vec<usize> = (4..800)
-                    .step_by(2)
-                    .filter(|&n| (1e-11..=1e-4).contains(&error(n)))
-                    .collect();
-                let (Some(&first), Some(&last)) = (counts.first(), counts.last()) else {
+                let Some((first, last, rate)) = row_rate(
+                    &case.a,
+                    &map,
+                    s,
+                    0.0,
+                    4096,
+                    (4..800).step_by(2),
+                    1e-11..=1e-4,
+                ) else {
                     continue;
                 };
                 if last - first < 8 {
                     continue;
                 }
-                let rate = (error(first) / error(last)).ln() / (last - first) as Real;
                 assert!(
                     (0.9..=1.4).contains(&(rate / eta)),
                     "{} s {s}: rate {rate:.3} against eta {eta:.3}",
@@ -2718,6 +2710,45 @@ mod side_needs_experiment {
             );
         });
     }
+}
+
+/// The periodic trapezoid rule on the row of radius `s` of X (mapped into Y's frame by `map`)
+/// over `field`'s potential, nodes at $(k + \text{shift})\,2\pi/n$: of `counts`, those whose
+/// errors (relative, against `reference` nodes) lie in `window`, and the rate of convergence
+/// between the first and the last of them, as (first, last, rate); `None` with fewer than two.
+#[cfg(test)]
+pub(crate) fn row_rate(
+    field: &Body,
+    map: &FrameMap,
+    s: Real,
+    shift: Real,
+    reference: usize,
+    counts: impl Iterator<Item = usize>,
+    window: std::ops::RangeInclusive<Real>,
+) -> Option<(usize, usize, Real)> {
+    let trapezoid = |n: usize| {
+        let step = std::f64::consts::TAU / n as Real;
+        (0..n)
+            .map(|k| {
+                let phi = (k as Real + shift) * step;
+                let r = map.apply(&Vec3::new(s * phi.cos(), s * phi.sin(), 0.0));
+                field.potential().field(&r).potential
+            })
+            .sum::<Real>()
+            * step
+    };
+    let exact = trapezoid(reference);
+    let error = |n: usize| ((trapezoid(n) - exact) / exact).abs();
+    let inside: Vec<usize> = counts.filter(|&n| window.contains(&error(n))).collect();
+    let (&first, &last) = (inside.first()?, inside.last()?);
+    if first == last {
+        return None;
+    }
+    Some((
+        first,
+        last,
+        (error(first) / error(last)).ln() / (last - first) as Real,
+    ))
 }
 
 /// The frame map the engine integrates a disk X in (`surface_choice::place`: X turned about

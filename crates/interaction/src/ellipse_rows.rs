@@ -60,6 +60,18 @@ fn dot(a: &[C; 3], b: &[C; 3]) -> C {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
+/// The two conditions at $(\varphi, t)$ on a row and what their derivatives take.
+struct Conditions {
+    /// $\mathbf d = \mathbf x(\varphi) - \mathbf p(t)$.
+    d: [C; 3],
+    x_phi: [C; 3],
+    p: [C; 3],
+    p_t: [C; 3],
+    /// $F = \mathbf d\cdot\mathbf d$, $G = \mathbf d\cdot\mathbf p'$.
+    f: C,
+    g: C,
+}
+
 /// $\mathbf c + \mathbf a\cos\theta + \mathbf b\sin\theta$ and its derivative in $\theta$.
 fn on_curve(c: &Vec3, a: &Vec3, b: &Vec3, theta: C) -> ([C; 3], [C; 3]) {
     let (cos, sin) = (theta.cos(), theta.sin());
@@ -105,34 +117,49 @@ impl EllipseRows {
         (r.dot(&self.q) / self.q.norm_squared()).atan2(r.dot(&self.p) / self.p.norm_squared())
     }
 
+    /// $F$ and $G$ at $(\varphi, t)$ on the row of radius `s`, with their ingredients.
+    fn conditions(&self, s: Real, phi: C, t: C) -> Conditions {
+        let (x, x_phi) = on_curve(&self.centre, &(self.e1 * s), &(self.e2 * s), phi);
+        let (p, p_t) = on_curve(&Vec3::zeros(), &self.p, &self.q, t);
+        let d: [C; 3] = std::array::from_fn(|i| x[i] - p[i]);
+        let (f, g) = (dot(&d, &d), dot(&d, &p_t));
+        Conditions {
+            d,
+            x_phi,
+            p,
+            p_t,
+            f,
+            g,
+        }
+    }
+
     /// $(F, G)$ at $(\varphi, t)$ on the row of radius `s` (for the tests).
     #[cfg(test)]
     pub(crate) fn residual(&self, s: Real, phi: C, t: C) -> (C, C) {
-        let (x, _) = on_curve(&self.centre, &(self.e1 * s), &(self.e2 * s), phi);
-        let (p, tangent) = on_curve(&Vec3::zeros(), &self.p, &self.q, t);
-        let d: [C; 3] = std::array::from_fn(|i| x[i] - p[i]);
-        (dot(&d, &d), dot(&d, &tangent))
+        let c = self.conditions(s, phi, t);
+        (c.f, c.g)
     }
 
     /// Newton's method for $F = G = 0$ on the row of radius `s` from $(\varphi_0, t_0)$; `None`
     /// where it does not converge (or the Jacobian is singular). The root's conjugate is also
     /// one: the returned $\varphi$ has $\operatorname{Im}\varphi \ge 0$.
     pub(crate) fn solve(&self, s: Real, phi0: C, t0: C) -> Option<EllipseRoot> {
-        let (a, b) = (self.e1 * s, self.e2 * s);
-        let zero = Vec3::zeros();
         let (mut phi, mut t) = (phi0, t0);
         for _ in 0..MAX_STEPS {
-            let (x, x_phi) = on_curve(&self.centre, &a, &b, phi);
-            let (p, p_t) = on_curve(&zero, &self.p, &self.q, t);
-            let d: [C; 3] = std::array::from_fn(|i| x[i] - p[i]);
-            let f = dot(&d, &d);
-            let g = dot(&d, &p_t);
+            let Conditions {
+                d,
+                x_phi,
+                p,
+                p_t,
+                f,
+                g,
+            } = self.conditions(s, phi, t);
             let (f_phi, f_t) = (dot(&d, &x_phi) * 2.0, g * -2.0);
             // p'' = −p (the ellipse about the origin).
             let (g_phi, g_t) = (dot(&x_phi, &p_t), -dot(&d, &p) - dot(&p_t, &p_t));
             let det = f_phi * g_t - f_t * g_phi;
             let scale = det.norm();
-            if scale.is_nan() || scale <= 0.0 || !scale.is_finite() {
+            if !scale.is_finite() || scale <= 0.0 {
                 return None;
             }
             let mut d_phi = (f_t * g - f * g_t) / det;
@@ -242,7 +269,7 @@ mod tests {
     /// of both conditions to 1e-10.
     #[test]
     fn roots_give_the_rows_convergence_rate() {
-        use crate::aimed::lamina::engine_map;
+        use crate::aimed::lamina::{engine_map, row_rate};
         use crate::aimed::{singular_set, SingularSet};
         use crate::body::BodyShape;
         use crate::work_precision::pose_set;
@@ -261,26 +288,11 @@ mod tests {
                 let rows = EllipseRows::of_axes(&axes, &map).expect("a triaxial focal ellipse");
                 for fraction in [0.6, 0.8, 0.95, 1.0] {
                     let s = fraction * lamina.radius();
-                    let trapezoid = |n: usize| {
-                        let step = std::f64::consts::TAU / n as Real;
-                        (0..n)
-                            .map(|k| {
-                                let phi = (k as Real + 0.37) * step;
-                                let r = map.apply(&Vec3::new(s * phi.cos(), s * phi.sin(), 0.0));
-                                case.a.potential().field(&r).potential
-                            })
-                            .sum::<Real>()
-                            * step
-                    };
-                    let reference = trapezoid(6000);
-                    let error = |n: usize| ((trapezoid(n) - reference) / reference).abs();
-                    let counts: Vec<usize> = (4..400)
-                        .filter(|&n| (1e-13..=1e-6).contains(&error(n)))
-                        .collect();
-                    let (Some(&first), Some(&last)) = (counts.first(), counts.last()) else {
+                    let Some((_, _, rate)) =
+                        row_rate(&case.a, &map, s, 0.37, 6000, 4..400, 1e-13..=1e-6)
+                    else {
                         continue;
                     };
-                    let rate = (error(first) / error(last)).ln() / (last - first) as Real;
                     let root = narrowest(&rows, &map, s, 16);
                     let root = root.expect("a root");
                     let (f, g) = rows.residual(s, root.phi, root.t);

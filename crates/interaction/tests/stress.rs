@@ -337,11 +337,24 @@ fn ellipsoid_scene(
     let a = Body::disk(UniformDisk::new(1.0, 1.0).unwrap()).unwrap();
     let (b_axis, c_axis) = (a_axis * b_ratio, a_axis * b_ratio * c_ratio);
     let b = Body::ellipsoid(Ellipsoid::new(a_axis, b_axis, c_axis, 1.0).unwrap()).unwrap();
+    apart(a, b, gap * a_axis, angles, rot_a, rot_b)
+}
+
+/// A at the origin and B where they touch along the direction `angles`, moved `distance`
+/// farther apart, in the attitudes `rot_a` and `rot_b`.
+fn apart(
+    a: Body,
+    b: Body,
+    distance: f64,
+    angles: [f64; 2],
+    rot_a: [f64; 3],
+    rot_b: [f64; 3],
+) -> Scene {
     let direction = direction_of(angles);
     let pose_a = Pose::new(Vec3::zeros(), Vec3::from(rot_a));
     let mut pose_b = Pose::new(Vec3::zeros(), Vec3::from(rot_b));
     let touch = touching_distance(&a, &pose_a, &b, &pose_b, &direction);
-    pose_b.translation.vector = direction * (touch + gap * a_axis);
+    pose_b.translation.vector = direction * (touch + distance);
     (a, pose_a, b, pose_b)
 }
 
@@ -392,12 +405,7 @@ fn disks_scene(
     } else {
         Body::spheroid(Spheroid::new(radius, radius * flattening, 1.0).unwrap()).unwrap()
     };
-    let direction = direction_of(angles);
-    let pose_a = Pose::new(Vec3::zeros(), Vec3::from(rot_a));
-    let mut pose_b = Pose::new(Vec3::zeros(), Vec3::from(rot_b));
-    let touch = touching_distance(&a, &pose_a, &b, &pose_b, &direction);
-    pose_b.translation.vector = direction * (touch + gap * radius);
-    (a, pose_a, b, pose_b)
+    apart(a, b, gap * radius, angles, rot_a, rot_b)
 }
 
 /// The engine's result on `scene` at `tolerance` over `surface` with `budget` evaluations.

@@ -214,7 +214,9 @@ pub(crate) struct LadderSettings {
     /// of 4.0e-13, and an oblate one near the axis of a prolate one (seed 13 #67) by 2.8e-13 on
     /// its first pair with a true error of 4.2e-13; with this, no estimate exceeded and none
     /// failed, at 1-13 % more evaluations on these sweeps (the stacked oblate–prolate
-    /// configuration 360 -> 512).
+    /// configuration 360 -> 512). Also the aimed lamina rule's plans corrected by a focal
+    /// ellipse's exact rows (`LaminaAim::corrected` in `aimed_lamina.rs`), whose first change
+    /// understated a near-contact error.
     pub(crate) oscillating: bool,
 }
 
