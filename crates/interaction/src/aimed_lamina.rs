@@ -2713,7 +2713,7 @@ mod side_needs_experiment {
 }
 
 /// The periodic trapezoid rule on the row of radius `s` of X (mapped into Y's frame by `map`)
-/// over `field`'s potential, nodes at $(k + \text{shift})\,2\pi/n$: of `counts`, those whose
+/// over `field`'s potential, nodes at $2\pi(k + \text{shift})/n$: of `counts`, those whose
 /// errors (relative, against `reference` nodes) lie in `window`, and the rate of convergence
 /// between the first and the last of them, as (first, last, rate); `None` with fewer than two.
 #[cfg(test)]
