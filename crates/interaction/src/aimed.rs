@@ -76,7 +76,6 @@ use surfgrav_potentials::{Field, Potential, Symmetry};
 use surfgrav_quadrature::{GaussLegendre, Rule1D};
 use surfgrav_surfaces::{EllipsoidSurface, Real, Vec3};
 
-#[path = "aimed_lamina.rs"]
 pub(crate) mod lamina;
 
 /// Polar-angle widths $w$ of the tabulated clustering maps (index 0: none, Gauss–Legendre in

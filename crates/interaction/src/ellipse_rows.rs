@@ -1,6 +1,6 @@
 //! The row singularities of a singular ellipse: where the field of a body whose singular set
 //! is an ellipse curve (a triaxial ellipsoid's focal ellipse), continued to complex azimuth
-//! along a circle of a disk (a row of the aimed lamina rule, `aimed_lamina.rs`), is
+//! along a circle of a disk (a row of the aimed lamina rule, `aimed/lamina.rs`), is
 //! singular.
 //!
 //! The exterior field of a homogeneous triaxial ellipsoid depends on the point through the

@@ -5,7 +5,7 @@
 //! at 10⁻¹³ over the other body, polar-angle form) within the two estimates, and cost what the
 //! symmetric rule costs: before it, two oblate spheroids stacked at gap 0.1 took 2,338
 //! evaluations (the pole was aimed at one point of the other's focal circle). A disk on the
-//! axis is integrated over with 8 angles per half-range (`aimed_lamina.rs`).
+//! axis is integrated over with 8 angles per half-range (`aimed/lamina.rs`).
 
 use nalgebra::{UnitQuaternion, Vector3};
 use surfgrav_interaction::work_precision::{independent_reference, interaction_error};

@@ -438,7 +438,7 @@ fn scene_agrees(scene: Scene) -> Result<(), TestCaseError> {
 /// nearest singular point's radius, and its error wandered between 4e-13 and 2.4e-10 from
 /// level to level; it certified an estimate of 1.7e-12 with a true error of 4.7e-11, so that
 /// the two surfaces differed by more than their estimates at 1e-10, and at a tolerance of
-/// 1e-11 the result missed it (see `NEAR_ROW_SAMPLES` in `aimed_lamina.rs`). Both checks
+/// 1e-11 the result missed it (see `NEAR_ROW_SAMPLES` in `aimed/lamina.rs`). Both checks
 /// fail without the rows sampled near that radius.
 fn disk_beside_disk() -> Scene {
     disks_scene(
@@ -630,7 +630,7 @@ fn budget_lowered_start_certifies_honestly() {
 /// `disks_near_contact`): over the unit disk at 1e-10 the radial rule planned against the
 /// other rim's pinches alone certified 1.0e-12 with a true error of 2.3e-12 (the levels'
 /// errors falling by 0.7 per step, the rule below its regime); with the plan at least a
-/// quarter of the cut plan (`CUT_FLOOR` in `aimed_lamina.rs`) both surfaces agree within
+/// quarter of the cut plan (`CUT_FLOOR` in `aimed/lamina.rs`) both surfaces agree within
 /// their estimates. Fails without the floor.
 #[test]
 fn near_contact_radial_plans_keep_a_floor() {

@@ -64,7 +64,7 @@ const FAR_LAMINA_ETA: Real = 1.0;
 /// the integrand on its rim: with Y's nearest singular point at in-plane radius $s_q$ and
 /// height $h$ in the disk's frame, the integrand on the rim circle $s = R$ is singular at
 /// $\varphi = \varphi_q \pm i\eta$, $\cosh\eta = (R^2 + s_q^2 + h^2)/(2Rs_q)$ (as for the aimed
-/// lamina rule, `aimed_lamina.rs`), and the periodic trapezoid rule's error falls like
+/// lamina rule, `aimed/lamina.rs`), and the periodic trapezoid rule's error falls like
 /// $e^{-\eta n}$ with $n \approx t/\kappa$ azimuths for $t$ radial nodes ([`table_size`]): $t =
 /// \kappa\ln(1/\tau)/\eta$. The gap formula of [`start_transverse`], fitted to the founding
 /// paper's spheroids, started up to 5 levels low for disks far from Y: on the 13 cases of
@@ -215,7 +215,7 @@ pub(crate) struct LadderSettings {
     /// its first pair with a true error of 4.2e-13; with this, no estimate exceeded and none
     /// failed, at 1-13 % more evaluations on these sweeps (the stacked oblate–prolate
     /// configuration 360 -> 512). Also the aimed lamina rule's plans corrected by a focal
-    /// ellipse's exact rows (`LaminaAim::corrected` in `aimed_lamina.rs`), whose first change
+    /// ellipse's exact rows (`LaminaAim::corrected` in `aimed/lamina.rs`), whose first change
     /// understated a near-contact error.
     pub(crate) oscillating: bool,
 }
