@@ -39,10 +39,11 @@
 //! rows see them: each point's least width over those rows, offset from the rows' centre
 //! ([`entry_widths`]; the rows of one entry can lie near $\mathbf q$'s radius and near the
 //! rim at once, and a point is at its narrowest on one of them only). Where the stretch is a
-//! triaxial body's focal ellipse, each point's angular widths are multiplied by the ratio of the exact
-//! row singularity ([`EllipseRows`]) to the point model's on the point's own narrowest row
-//! (between 1 and [`EXACT_MAX_RATIO`]): treating each point of a curve as an isolated
-//! singular point understates the rows' widths by up to a factor 2.
+//! triaxial body's focal ellipse, each point's angular widths are multiplied by the ratio of
+//! the exact row singularity ([`EllipseRows`]) to the point model's on the point's own
+//! narrowest row (between 1 and [`EXACT_MAX_RATIO`]): treating each point of a curve as an
+//! isolated singular point understates the rows' widths by up to a factor 2. (The radial
+//! sides keep the points' own heights: the ratio is the rows' angular singularity.)
 //!
 //! # A singular circle
 //!
@@ -74,7 +75,8 @@
 //! complex $t^\ast$ sits at $u^\ast = \operatorname{asinh}(t^\ast/w)/\mu$, and the rule's error falls
 //! like $\rho^{-2n}$ with $\rho$ the Bernstein ellipse through $u^\ast$ (for several
 //! singularities, the least favourable). Per side, the widest width $w$ (or none) whose
-//! predicted count for the tolerance is within [`WIDTH_SLACK`](clustered_side::WIDTH_SLACK) of the fewest is chosen, and
+//! predicted count for the tolerance is within
+//! [`WIDTH_SLACK`](clustered_side::WIDTH_SLACK) of the fewest is chosen, and
 //! that count is the side's share of the first level.
 //!
 //! # Certification
@@ -117,10 +119,11 @@ const MIN_NODES: usize = 4;
 /// slowly). Measured over the 48 disk cases of the random-pose set (`pose_benchmark`, seed
 /// 12, four per pair of kinds with a disk, gaps 0.05 to 5): with the bare prediction and the
 /// one-point plan the first level's errors were 1e-10 to 7e-6. With the stretch model and
-/// [`WIDTH_SLACK`](clustered_side::WIDTH_SLACK) (the `level_errors` tool below), the one under-resolved case of the set,
-/// disk-disk gap 0.05 #1 (narrowest angular singularity 0.026), needs 0.88 of its first
-/// level with this factor; with 1.0 (on every plan) the engine's ladder fell short at the
-/// first level there and took 14,952 evaluations (4,500 as now).
+/// [`WIDTH_SLACK`](clustered_side::WIDTH_SLACK) (the `level_errors` tool, `lamina/tools.rs`),
+/// the one under-resolved case of the set, disk-disk gap 0.05 #1 (narrowest angular
+/// singularity 0.026), needs 0.88 of its first level with this factor; with 1.0 (on every
+/// plan) the engine's ladder fell short at the first level there and took 14,952 evaluations
+/// (4,500 as now).
 const AREA_MARGIN: Real = 1.4;
 
 /// The factor on the predicted counts of the area rule's sides where the stretch model
@@ -133,7 +136,8 @@ const STRETCH_MARGIN: Real = 1.1;
 
 /// The factor on the rim rule's predicted count (the stretch model's, [`near_stretch`], and
 /// the exact rim row's of a singular circle, [`CircleRows`]). Measured with the `side_needs`
-/// tool below (seeds 12 to 16, 84 cases of the stretch model and 85 of a singular circle): the
+/// tool (`lamina/tools.rs`; seeds 12 to 16, 84 cases of the stretch model and 85 of a singular
+/// circle): the
 /// fraction of its plan the rim rule needed alone for 1e-12 was 0.4 to 0.95 (median 0.65) for
 /// the stretch model (0.3 to 0.8 with the factor 1.5, 0.2 to 0.4 with the earlier 3) and 0.6
 /// to 0.95 (median 0.7) for a circle. Evaluations of the 48 disk cases of `pose_benchmark`,
@@ -147,7 +151,8 @@ const RIM_MARGIN: Real = 1.25;
 /// exact row singularities ([`CircleRows`]), and on its radial sides (planned against the
 /// circle's pinches, [`circle_pinches`], and before them against 64 samples of the circle as a
 /// cut: the measurements below); the rim's is [`RIM_MARGIN`]. Measured with the `side_needs`
-/// tool below (85 cases with a singular circle, seeds 12 to 16; each rule alone at a fraction
+/// tool (`lamina/tools.rs`; 85 cases with a singular circle, seeds 12 to 16; each rule alone
+/// at a fraction
 /// of its plan, the others at three times theirs): with this factor, the fraction each needed
 /// for 1e-12 was 0.6 to 1.0 (median 0.7) for the angle and 0.3 to 0.9 (median 0.7) radial
 /// (planned against the cut's two least favourable points; 0.4 to 0.75 against the pinches,

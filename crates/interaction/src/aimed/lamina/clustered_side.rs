@@ -9,9 +9,9 @@ use surfgrav_surfaces::Real;
 /// factor of the fewest. The one-pole model's optimum is too narrow for the rule as used: each
 /// angular side serves radii whose singularity is up to twice as wide as the one it was
 /// planned for, and a singular curve puts further singular points beside the nearest one.
-/// Measured with the true error of each level (the `level_errors` tool below, 35 disk cases
-/// of the seed-12 pose set, the stretch model with up to 8 points and [`AREA_MARGIN`](super::AREA_MARGIN) on
-/// every plan): the evaluations of the first levels within 1e-12 total 15,094 with factor
+/// Measured with the true error of each level (the `level_errors` tool, `tools.rs`; 35 disk
+/// cases of the seed-12 pose set, the stretch model with up to 8 points and
+/// [`AREA_MARGIN`](super::AREA_MARGIN) on every plan): the evaluations of the first levels within 1e-12 total 15,094 with factor
 /// 1.25, 13,458 with 1.5, 13,928 with 1.75 and 14,212 with 2 (seed 13: 13,764 with 1.5,
 /// 14,816 with 2; with the one-point plan and no slack, 20,754 and 20,124).
 pub(super) const WIDTH_SLACK: Real = 1.5;
