@@ -391,11 +391,11 @@ pub(crate) fn place(
     // its singular radius: the solids' fixed tables, started lower by the true distance, let
     // an estimate be exceeded (the independent reference of `pose_benchmark` seed 64,
     // spheroid-disk gap 0.05 #2, over the spheroid at 1e-13: 8.8e-14 certified, 2.4e-13 off).
-    let to_set = if matches!(x.shape(), BodyShape::Disk(_)) {
-        singular_distance(y, &map, distance)
-    } else {
-        distance - y.singular_radius()
-    };
+    let to_set = match x.shape() {
+        BodyShape::Disk(_) => singular_distance(y, &map),
+        _ => None,
+    }
+    .unwrap_or(distance - y.singular_radius());
     let gap_ratio = ((to_set - x.bounding_radius()) / x.bounding_radius()).max(1e-3);
     let sin_elevation = if distance > 0.0 { q.z / distance } else { 1.0 };
     let clustering = if options.cluster_azimuth && axisymmetric {
@@ -455,27 +455,25 @@ pub(crate) fn start_transverse(options: &InteractionOptions, placement: &Placeme
     (t.round() as u16).clamp(2, MAX_TRANSVERSE)
 }
 
-/// The distance from X's centroid (`map`'s origin; `distance` from Y's centroid) to Y's
-/// singular set: to its nearest point where the set is known (a built-in field: the focal
-/// ellipse, segment or circle, [`aimed::singular_set`]), otherwise to the ball of
-/// [`Body::singular_radius`] about Y's centroid. A body beside a prolate spheroid's equator
+/// The distance from X's centroid (`map`'s origin) to the nearest point of Y's singular set
+/// where the set is known (a built-in field: the focal ellipse, segment or circle,
+/// [`aimed::singular_set`]); `None` otherwise (the caller takes the ball of
+/// [`Body::singular_radius`] about Y's centroid). A body beside a prolate spheroid's equator
 /// is far from the focal segment along its axis, which the ball of the segment's half-length
 /// puts at contact: `pose_benchmark` seed 56, a disk 0.094 from a prolate spheroid of semi-axes
 /// 1 and 1.96, started the disk's fixed table at level 71 and took 15,924 evaluations
 /// (estimate 6.8e-15).
-fn singular_distance(y: &Body, map: &FrameMap, distance: Real) -> Real {
+fn singular_distance(y: &Body, map: &FrameMap) -> Option<Real> {
     use surfgrav_potentials::TypedPotential;
-    if matches!(
+    let known = !matches!(
         y.typed(),
         TypedPotential::Custom | TypedPotential::Polyhedron(_)
-    ) || !matches!(
+    ) && matches!(
         y.shape(),
         BodyShape::Point | BodyShape::Solid(_) | BodyShape::Disk(_)
-    ) {
-        return distance - y.singular_radius();
-    }
+    );
     let centre = map.offset;
-    (centre - aimed::singular_set(y).nearest(&centre)).norm()
+    known.then(|| (centre - aimed::singular_set(y).nearest(&centre)).norm())
 }
 
 pub(crate) fn nearest_clustering(eps: Real) -> u8 {
